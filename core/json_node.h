@@ -1,0 +1,93 @@
+#pragma once
+/// Located access to a JSON document: every value knows its file and JSON pointer, so each
+/// input error reads "scene.json: /media/0/phase/g = 1.2: must be in (-1, 1)".
+#include "core/color.h"
+#include "core/math.h"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+using Json = nlohmann::json;
+
+/// One value inside a JSON document, with the document's file name and the value's pointer.
+/// Does not own the document: keep the root alive while nodes are in use.
+class JsonNode {
+  public:
+    JsonNode(const Json& value, std::string file, std::string pointer = "");
+
+    const Json& value() const { return *m_value; }
+    const std::string& file() const { return m_file; }
+    /// JSON pointer of this value ("" for the root).
+    const std::string& pointer() const { return m_pointer; }
+
+    /// Throws an input error naming file, pointer and (abbreviated) value.
+    [[noreturn]] void fail(const std::string& what) const;
+
+    JsonNode child(const std::string& key) const;  ///< requires an object holding key
+    JsonNode child(size_t index) const;            ///< requires an array
+    size_t size() const;                           ///< array or object size
+
+    bool is_null() const { return m_value->is_null(); }
+    bool is_number() const { return m_value->is_number(); }
+    bool is_string() const { return m_value->is_string(); }
+    bool is_array() const { return m_value->is_array(); }
+    bool is_object() const { return m_value->is_object(); }
+
+    double as_double() const;  ///< finite number
+    float as_float() const;
+    int64_t as_int() const;  ///< integral number
+    bool as_bool() const;
+    std::string as_string() const;
+    Vec3 as_vec3() const;                    ///< [x, y, z]
+    Rgb as_rgb() const;                      ///< scalar s (→ s,s,s) or [r, g, b]
+    std::vector<JsonNode> elements() const;  ///< array elements
+
+    /// Range checks that fail with the reason spelled out.
+    float positive() const;      ///< > 0
+    float non_negative() const;  ///< >= 0
+    Rgb non_negative_rgb() const;
+    float in_open(float lo, float hi) const;    ///< in (lo, hi)
+    float in_closed(float lo, float hi) const;  ///< in [lo, hi]
+    Vec3 unit_direction() const;                ///< non-zero vector, returned normalised
+
+  private:
+    const Json* m_value;
+    std::string m_file;
+    std::string m_pointer;
+};
+
+/// Reads an object's keys and reports the ones nobody asked for: call finish() after reading.
+class JsonObjectReader {
+  public:
+    explicit JsonObjectReader(const JsonNode& node);
+
+    const JsonNode& node() const { return m_node; }
+    bool has(const std::string& key) const;
+    std::optional<JsonNode> optional(const std::string& key);
+    JsonNode required(const std::string& key);
+
+    /// Fails if the object holds a key that was never read, listing the keys that were.
+    void finish() const;
+
+  private:
+    JsonNode m_node;
+    std::set<std::string> m_known;
+};
+
+/// Parses JSON text that may contain // and /* */ comments; errors name the file and position.
+Json parse_json_text(const std::string& text, const std::string& file);
+
+/// Reads and parses a JSON file (comments allowed).
+Json read_json_file(const std::string& path);
+
+/// Escapes a key for use in a JSON pointer (RFC 6901: ~ → ~0, / → ~1).
+std::string json_pointer_escape(const std::string& key);
+
+}  // namespace kasumi

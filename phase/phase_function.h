@@ -1,0 +1,33 @@
+#pragma once
+/// The closed set of phase functions a medium can carry, as a variant of small value types with
+/// free eval / pdf / sample functions (no virtual call per sample). Convention: wo toward the
+/// viewer, wi toward the light, mu = -dot(wo, wi); values and pdfs are per steradian and every
+/// model integrates to 1 over the sphere.
+#include "phase/henyey_greenstein.h"
+#include "phase/isotropic.h"
+
+#include <variant>
+
+namespace kasumi {
+
+using PhaseFunction = std::variant<Isotropic, HenyeyGreenstein>;
+
+inline float eval(const PhaseFunction& p, float mu) {
+    return std::visit([mu](const auto& model) { return eval(model, mu); }, p);
+}
+inline float pdf(const PhaseFunction& p, float mu) {
+    return std::visit([mu](const auto& model) { return pdf(model, mu); }, p);
+}
+inline PhaseSample sample(const PhaseFunction& p, const Vec3& wo, Vec2 u) {
+    return std::visit([&](const auto& model) { return sample(model, wo, u); }, p);
+}
+inline float mean_cosine(const PhaseFunction& p) {
+    return std::visit([](const auto& model) { return mean_cosine(model); }, p);
+}
+
+/// Evaluates the phase function for a pair of directions in the project's convention.
+inline float eval(const PhaseFunction& p, const Vec3& wo, const Vec3& wi) {
+    return eval(p, scattering_cosine(wo, wi));
+}
+
+}  // namespace kasumi
