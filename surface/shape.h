@@ -1,0 +1,57 @@
+#pragma once
+/// Shapes a scene may contain, as plain values (world space, metres). The Embree scene turns
+/// them into geometry; nothing here depends on Embree.
+#include "core/json_node.h"
+#include "core/math.h"
+
+#include <array>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace kasumi {
+
+struct SphereShape {
+    Vec3 center{0.0f};
+    float radius = 1.0f;  ///< > 0
+};
+
+/// A planar quadrilateral; its front side is the one its vertices wind counter-clockwise toward.
+struct QuadShape {
+    std::array<Vec3, 4> vertices;
+};
+
+struct BoxShape {
+    Vec3 min{-0.5f};
+    Vec3 max{0.5f};
+};
+
+/// A triangle mesh in world space. Normals are per vertex when the file gives them (else empty).
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+    std::vector<std::array<uint32_t, 3>> triangles;
+};
+
+struct MeshShape {
+    std::string file;  ///< resolved path of the OBJ file
+    TriangleMesh mesh;
+};
+
+struct Shape {
+    std::string name;
+    std::variant<SphereShape, QuadShape, BoxShape, MeshShape> geometry;
+    uint32_t material = 0;  ///< index into the scene's material list
+};
+
+/// Parses one entry of `shapes`; `materials` maps names to indices, `base_dir` resolves files
+/// (meshes are loaded here, so load errors name the scene file and JSON path).
+Shape parse_shape(const JsonNode& node, const std::map<std::string, uint32_t>& materials,
+                  const std::string& base_dir);
+
+/// Reads a Wavefront OBJ file (v, vn, f with polygons fan-triangulated; other statements
+/// ignored). Throws an input error naming file and line.
+TriangleMesh load_obj(const std::string& path);
+
+}  // namespace kasumi
