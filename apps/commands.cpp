@@ -1,0 +1,228 @@
+#include "apps/commands.h"
+
+#include "apps/output_writer.h"
+#include "apps/scene_options.h"
+#include "core/error.h"
+#include "render/probe.h"
+#include "render/renderer.h"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace kasumi {
+
+namespace {
+
+int g_exit_code = 0;
+std::atomic<bool> g_cancel{false};
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_signal(int signal) {
+    g_signal = signal;
+    g_cancel.store(true);
+}
+
+Vec3 parse_vec3_arg(const std::string& text, const std::string& option) {
+    std::istringstream in(text);
+    Vec3 v;
+    char c1 = 0, c2 = 0;
+    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+        !is_finite(v)) {
+        throw Error(ErrorKind::Usage, option + " expects X,Y,Z, got \"" + text + "\"");
+    }
+    return v;
+}
+
+void print_json(const Json& j) {
+    std::cout << j.dump(2) << std::endl;
+}
+
+Json rgb_json(const Rgb& c) {
+    return Json::array({c.r, c.g, c.b});
+}
+
+}  // namespace
+
+int command_exit_code() {
+    return g_exit_code;
+}
+void set_command_exit_code(int code) {
+    g_exit_code = code;
+}
+std::string version_string() {
+    return "kasumi 0.1.0";
+}
+
+void add_render_command(CLI::App& root) {
+    struct Options {
+        SceneOptions scene;
+        std::string output;
+        std::string preview;
+        bool no_preview = false;
+        int spp = 0;
+        int64_t seed = -1;
+        int threads = 0;
+        std::string res;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* cmd = root.add_subcommand("render", "render a scene to EXR and a PNG preview");
+    options->scene.add_to(*cmd);
+    cmd->add_option("-o,--output", options->output, "EXR output (default out/<scene>.exr)");
+    auto* preview = cmd->add_option("--preview", options->preview,
+                                    "PNG preview through OpenColorIO (default: beside the EXR)");
+    cmd->add_flag("--no-preview", options->no_preview, "write no PNG preview")->excludes(preview);
+    cmd->add_option("--spp", options->spp, "samples per pixel (overrides film.spp)")
+        ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--seed", options->seed, "random seed (overrides render.seed)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--threads", options->threads, "worker threads (0: all)")
+        ->check(CLI::Range(0, 1024));
+    cmd->add_option("--res", options->res, "resolution WxH (overrides film.width/height)");
+    cmd->callback([options] {
+        SceneOptions scene_options = options->scene;
+        if (options->spp > 0)
+            scene_options.sets.push_back("/film/spp=" + std::to_string(options->spp));
+        if (options->seed >= 0)
+            scene_options.sets.push_back("/render/seed=" + std::to_string(options->seed));
+        if (!options->res.empty()) {
+            int w = 0, h = 0;
+            char x = 0;
+            std::istringstream in(options->res);
+            if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 1 || h < 1) {
+                throw Error(ErrorKind::Usage, "--res expects WxH, got \"" + options->res + "\"");
+            }
+            scene_options.sets.push_back("/film/width=" + std::to_string(w));
+            scene_options.sets.push_back("/film/height=" + std::to_string(h));
+        }
+        // Overrides need their parent objects; create film/render when the scene omits them.
+        SceneDesc desc = [&] {
+            std::vector<Override> overrides;
+            for (const std::string& s : scene_options.sets)
+                overrides.push_back(parse_override(s));
+            Json root = read_json_file(scene_options.scene_path);
+            if (root.is_object()) {
+                for (const char* key : {"film", "render"}) {
+                    if (!root.contains(key))
+                        root[key] = Json::object();
+                }
+            }
+            apply_overrides(root, overrides, scene_options.scene_path);
+            return parse_scene(root, scene_options.scene_path);
+        }();
+
+        OutputPaths paths;
+        const std::string stem = std::filesystem::path(desc.file).stem().string();
+        paths.exr = options->output.empty() ? "out/" + stem + ".exr" : options->output;
+        if (!options->no_preview) {
+            paths.preview =
+                options->preview.empty()
+                    ? std::filesystem::path(paths.exr).replace_extension(".png").string()
+                    : options->preview;
+        }
+
+        const SceneRuntime runtime(std::move(desc));
+        if (scene_options.verbose)
+            std::fprintf(stderr, "plan:\n%s", plan_to_text(runtime.plan()).c_str());
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        RenderOptions render_options;
+        render_options.threads = options->threads;
+        render_options.progress = !scene_options.quiet;
+        render_options.cancel = &g_cancel;
+        const RenderResult result = render_image(runtime, render_options);
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
+
+        write_render_outputs(runtime, result, paths);
+        if (scene_options.verbose)
+            std::fputs(format_stats(runtime, result).c_str(), stderr);
+        if (!scene_options.quiet) {
+            std::fprintf(stderr, "wrote %s%s%s (%.2f s)\n", paths.exr.c_str(),
+                         paths.preview.empty() ? "" : " and ", paths.preview.c_str(),
+                         result.seconds);
+        }
+        if (result.counters.nonfinite_samples > 0) {
+            std::fprintf(stderr, "kasumi: warning: %llu non-finite samples were dropped\n",
+                         static_cast<unsigned long long>(result.counters.nonfinite_samples));
+        }
+        if (result.interrupted) {
+            std::fprintf(stderr, "kasumi: interrupted; partial image written\n");
+            set_command_exit_code(g_signal == SIGTERM ? 143 : 130);
+        }
+    });
+}
+
+void add_plan_command(CLI::App& root) {
+    struct Options {
+        SceneOptions scene;
+        bool json = false;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* cmd =
+        root.add_subcommand("plan", "print the stages a scene calls for and those it skips");
+    options->scene.add_to(*cmd);
+    cmd->add_flag("--json", options->json, "one JSON object on stdout");
+    cmd->callback([options] {
+        const SceneDesc desc = options->scene.load();
+        const Plan plan = make_plan(desc);
+        if (options->json) {
+            print_json(plan_to_json(plan));
+        } else {
+            std::cout << desc.file << ":\n" << plan_to_text(plan);
+        }
+    });
+}
+
+void add_check_command(CLI::App& root) {
+    auto options = std::make_shared<SceneOptions>();
+    CLI::App* cmd =
+        root.add_subcommand("check", "validate a scene and resolve its files; render nothing");
+    options->add_to(*cmd);
+    cmd->callback([options] {
+        const SceneDesc desc = options->load();
+        if (!options->quiet) {
+            std::cout << desc.file << ": ok (" << desc.shapes.size() << " shapes, "
+                      << desc.lights.size() << " lights, " << desc.media.size() << " media, "
+                      << desc.materials.size() << " materials)\n";
+        }
+    });
+}
+
+void add_probe_command(CLI::App& root) {
+    CLI::App* probe = root.add_subcommand("probe", "measure one quantity; JSON on stdout");
+    probe->require_subcommand(1);
+
+    struct RadianceOptions {
+        SceneOptions scene;
+        std::string origin, direction;
+        int spp = 0;
+    };
+    auto options = std::make_shared<RadianceOptions>();
+    CLI::App* cmd = probe->add_subcommand("radiance", "radiance seen along one camera ray");
+    options->scene.add_to(*cmd);
+    cmd->add_option("--origin", options->origin, "ray origin X,Y,Z (metres)")->required();
+    cmd->add_option("--direction", options->direction, "ray direction X,Y,Z")->required();
+    cmd->add_option("--spp", options->spp, "samples (default: film.spp)")
+        ->check(CLI::Range(1, 1 << 24));
+    cmd->callback([options] {
+        const Vec3 origin = parse_vec3_arg(options->origin, "--origin");
+        const Vec3 direction = parse_vec3_arg(options->direction, "--direction");
+        if (!(glm::length(direction) > 0.0f)) {
+            throw Error(ErrorKind::Usage, "--direction must be a non-zero vector");
+        }
+        const SceneRuntime runtime(options->scene.load());
+        const int spp = options->spp > 0 ? options->spp : runtime.desc().film.spp;
+        const RadianceProbe p = probe_radiance(runtime, origin, direction, spp);
+        print_json(Json{{"radiance", rgb_json(p.radiance)},
+                        {"stderr", rgb_json(p.stderr_)},
+                        {"luminance_cd_m2", p.luminance_cd_m2},
+                        {"samples", p.samples}});
+    });
+}
+
+}  // namespace kasumi

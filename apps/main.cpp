@@ -1,0 +1,32 @@
+/// kasumi: the command-line interface. Thin: parses arguments, calls the library, maps errors to
+/// exit codes (0 ok, 1 runtime, 2 usage, 3 invalid input, 4 cannot write, 5 validation failed,
+/// 130/143 interrupted).
+#include "apps/commands.h"
+#include "core/error.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+int main(int argc, char** argv) {
+    CLI::App app{"kasumi: a renderer of participating media"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", kasumi::version_string());
+    kasumi::add_render_command(app);
+    kasumi::add_plan_command(app);
+    kasumi::add_check_command(app);
+    kasumi::add_probe_command(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? 0 : static_cast<int>(kasumi::ErrorKind::Usage);
+    } catch (const kasumi::Error& e) {
+        std::fprintf(stderr, "kasumi: %s\n", e.what());
+        return e.exit_code();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "kasumi: internal error: %s\n", e.what());
+        return static_cast<int>(kasumi::ErrorKind::Runtime);
+    }
+    return kasumi::command_exit_code();
+}

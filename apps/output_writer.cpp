@@ -1,0 +1,76 @@
+#include "apps/output_writer.h"
+
+#include "apps/commands.h"
+#include "core/color_management.h"
+#include "core/error.h"
+#include "core/exr_io.h"
+
+#include <filesystem>
+#include <sstream>
+
+namespace kasumi {
+
+namespace {
+
+void make_parent_dirs(const std::string& path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (parent.empty())
+        return;
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+    if (ec)
+        throw_output_error(path + ": cannot create directory " + parent.string() + ": " +
+                           ec.message());
+}
+
+}  // namespace
+
+void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
+                          const OutputPaths& paths) {
+    const SceneDesc& desc = scene.desc();
+    Image image = result.film.to_image();
+    const RenderCounters& c = result.counters;
+    image.metadata = {
+        {"kasumi/version", version_string()},
+        {"kasumi/scene", desc.file},
+        {"kasumi/spp", std::to_string(desc.film.spp)},
+        {"kasumi/seed", std::to_string(desc.render.seed)},
+        {"kasumi/render_seconds", std::to_string(result.seconds)},
+        {"kasumi/units", "scene-linear Rec.709, luminance in cd/m2"},
+        {"kasumi/interrupted", result.interrupted ? "true" : "false"},
+        {"kasumi/stats/camera_rays", std::to_string(c.camera_rays)},
+        {"kasumi/stats/surface_shadow_rays", std::to_string(c.surface_shadow_rays)},
+        {"kasumi/stats/volume_steps", std::to_string(c.volume_steps)},
+        {"kasumi/stats/volume_shadow_rays", std::to_string(c.volume_shadow_rays)},
+        {"kasumi/stats/nonfinite_samples", std::to_string(c.nonfinite_samples)},
+    };
+    make_parent_dirs(paths.exr);
+    write_exr(image, paths.exr);
+    if (!paths.preview.empty()) {
+        make_parent_dirs(paths.preview);
+        PreviewSettings preview;
+        preview.config_path = default_ocio_config_path();
+        preview.view = desc.render.preview.view;
+        preview.exposure_stops = desc.render.preview.exposure_stops;
+        write_preview_png(image, paths.preview, preview);
+    }
+}
+
+std::string format_stats(const SceneRuntime& scene, const RenderResult& result) {
+    const RenderCounters& c = result.counters;
+    std::ostringstream out;
+    out << "plan:\n" << plan_to_text(scene.plan());
+    out << "stats:\n";
+    out << "  time                " << result.seconds << " s\n";
+    out << "  camera rays         " << c.camera_rays << "\n";
+    out << "  surface hits        " << c.surface_hits << "\n";
+    out << "  surface shadow rays " << c.surface_shadow_rays << "\n";
+    out << "  volume rays         " << c.volume_rays << "\n";
+    out << "  volume steps        " << c.volume_steps << "\n";
+    out << "  volume shadow rays  " << c.volume_shadow_rays << "\n";
+    out << "  bvh built           " << (scene.surfaces() != nullptr ? "yes" : "no") << "\n";
+    out << "  non-finite samples  " << c.nonfinite_samples << "\n";
+    return out.str();
+}
+
+}  // namespace kasumi

@@ -1,0 +1,24 @@
+#pragma once
+/// Options every scene-reading subcommand shares: the scene path, --set overrides, verbosity.
+#include "render/scene_loader.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+struct SceneOptions {
+    std::string scene_path;
+    std::vector<std::string> sets;
+    bool quiet = false;
+    bool verbose = false;
+
+    /// Registers SCENE, --set, -q and -v on `command`.
+    void add_to(CLI::App& command);
+    /// Loads the scene with the overrides applied.
+    SceneDesc load() const;
+};
+
+}  // namespace kasumi

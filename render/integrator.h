@@ -1,0 +1,20 @@
+#pragma once
+/// The per-sample integrator that composes the stages along one camera ray:
+///   L = L_volume + T * (L_surface or L_background).
+#include "core/film.h"
+#include "core/rng.h"
+#include "render/render_stats.h"
+#include "render/scene_runtime.h"
+
+namespace kasumi {
+
+/// Radiance (cd/m²) and AOVs seen along `ray` (a camera ray). Never throws; a non-finite result
+/// is returned as is for the caller to count.
+PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
+                             RenderCounters& counters);
+
+/// Phong shading of a surface point by the scene's lights and ambient term (no media in front).
+Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo,
+                  RenderCounters& counters);
+
+}  // namespace kasumi

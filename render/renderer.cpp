@@ -1,0 +1,101 @@
+#include "render/renderer.h"
+
+#include "core/progress.h"
+#include "render/integrator.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <mutex>
+
+namespace kasumi {
+
+namespace {
+
+bool is_finite_sample(const PixelSample& s) {
+    return is_finite(s.radiance) && is_finite(s.surface) && is_finite(s.volume) &&
+           is_finite(s.transmittance) && std::isfinite(s.depth);
+}
+
+}  // namespace
+
+PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame,
+                                RenderCounters& counters) {
+    Pcg32 rng = pixel_rng(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
+                          static_cast<uint32_t>(sample), frame, scene.desc().render.seed);
+    const Vec2 jitter = rng.next_vec2();
+    const Ray ray = scene.camera().generate_ray(static_cast<float>(x) + jitter.x,
+                                                static_cast<float>(y) + jitter.y);
+    return trace_camera_ray(scene, ray, rng, counters);
+}
+
+RenderResult render_image(const SceneRuntime& scene, const RenderOptions& options) {
+    const SceneDesc& desc = scene.desc();
+    const int width = desc.film.width, height = desc.film.height, spp = desc.film.spp;
+    const int tile = desc.render.tile_size;
+    const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
+    const int threads = options.threads > 0 ? options.threads : desc.render.threads;
+
+    RenderResult result{Film(width, height), {}, 0.0, false};
+    std::mutex counters_mutex;
+    std::atomic<bool> stopped{false};
+    Progress progress("render", static_cast<uint64_t>(tiles_x) * tiles_y, options.progress);
+    const auto start = std::chrono::steady_clock::now();
+
+    auto render_tile = [&](int tile_index) {
+        if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) {
+            stopped = true;
+            return;
+        }
+        const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
+        RenderCounters local;
+        for (int y = y0; y < std::min(y0 + tile, height); ++y) {
+            for (int x = x0; x < std::min(x0 + tile, width); ++x) {
+                PixelSample sum;
+                sum.transmittance = Rgb(0.0f);
+                int hits = 0;
+                float depth_sum = 0.0f;
+                for (int s = 0; s < spp; ++s) {
+                    const PixelSample p = render_pixel_sample(scene, x, y, s, options.frame, local);
+                    if (!is_finite_sample(p)) {
+                        ++local.nonfinite_samples;
+                        continue;
+                    }
+                    sum.radiance += p.radiance;
+                    sum.surface += p.surface;
+                    sum.volume += p.volume;
+                    sum.transmittance += p.transmittance;
+                    sum.albedo += p.albedo;
+                    if (p.hit) {
+                        ++hits;
+                        depth_sum += p.depth;
+                    }
+                }
+                result.film.set_pixel(x, y, sum, spp, hits, depth_sum);
+            }
+        }
+        {
+            std::lock_guard<std::mutex> lock(counters_mutex);
+            result.counters += local;
+        }
+        progress.advance();
+    };
+
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
+                          [&](const tbb::blocked_range<int>& r) {
+                              for (int i = r.begin(); i < r.end(); ++i)
+                                  render_tile(i);
+                          });
+    });
+    progress.finish();
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.interrupted = stopped.load();
+    return result;
+}
+
+}  // namespace kasumi

@@ -1,0 +1,34 @@
+#pragma once
+/// Renders a scene into a film: tiles in parallel (oneTBB), each pixel sample with its own
+/// generator keyed by (pixel, sample, frame, seed), so the image is bit-identical for any
+/// thread count or tile order.
+#include "core/film.h"
+#include "render/render_stats.h"
+#include "render/scene_runtime.h"
+
+#include <atomic>
+
+namespace kasumi {
+
+struct RenderOptions {
+    int threads = 0;  ///< 0: the scene's render.threads (0 there: all hardware threads)
+    uint32_t frame = 0;
+    bool progress = true;
+    const std::atomic<bool>* cancel =
+        nullptr;  ///< set asynchronously to stop after the current tiles
+};
+
+struct RenderResult {
+    Film film;
+    RenderCounters counters;
+    double seconds = 0.0;
+    bool interrupted = false;  ///< tiles not rendered are black
+};
+
+RenderResult render_image(const SceneRuntime& scene, const RenderOptions& options);
+
+/// One sample of pixel (x, y): the generator and sub-pixel position both come from the key.
+PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame,
+                                RenderCounters& counters);
+
+}  // namespace kasumi

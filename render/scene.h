@@ -1,0 +1,52 @@
+#pragma once
+/// The scene description: plain values read from a scene file and validated, before anything
+/// is built. Units: metres, lux, candela, cd/m², 1/m.
+#include "core/camera.h"
+#include "lights/light.h"
+#include "surface/material.h"
+#include "surface/shape.h"
+#include "volume/in_scattering.h"
+#include "volume/medium.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+struct FilmDesc {
+    int width = 640;   ///< pixels, 1..16384
+    int height = 360;  ///< pixels, 1..16384
+    int spp = 16;      ///< samples per pixel, >= 1
+};
+
+struct PreviewDesc {
+    std::string view = "ACES 1.0 - SDR Video";  ///< OCIO view of the sRGB display
+    float exposure_stops = 0.0f;
+};
+
+struct RenderSettings {
+    uint64_t seed = 0;
+    int threads = 0;      ///< 0: all hardware threads
+    int tile_size = 16;   ///< pixels
+    bool shadows = true;  ///< shadow rays for surfaces and media
+    VolumeSettings volume;
+    PreviewDesc preview;
+};
+
+struct SceneDesc {
+    std::string file;      ///< the scene file, as given
+    std::string base_dir;  ///< directory relative paths resolve against
+    CameraDesc camera;
+    FilmDesc film;
+    std::vector<std::string> material_names;
+    std::vector<Material> materials;
+    std::vector<Shape> shapes;
+    std::vector<Light> lights;
+    std::vector<Medium> media;
+    Rgb ambient{0.0f};     ///< ambient radiance (cd/m²) that the Phong ka term reflects
+    Rgb background{0.0f};  ///< radiance (cd/m²) of rays that leave the scene
+    RenderSettings render;
+};
+
+}  // namespace kasumi

@@ -1,0 +1,209 @@
+#include "render/scene_loader.h"
+
+#include "core/error.h"
+#include "lights/light_json.h"
+#include "volume/medium_json.h"
+#include "volume/medium_set.h"
+
+#include <filesystem>
+#include <map>
+
+namespace kasumi {
+
+namespace {
+
+CameraDesc parse_camera(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    CameraDesc camera;
+    if (auto v = reader.optional("position"))
+        camera.position = v->as_vec3();
+    if (auto v = reader.optional("look_at"))
+        camera.look_at = v->as_vec3();
+    if (auto v = reader.optional("up"))
+        camera.up = v->unit_direction();
+    if (auto v = reader.optional("fov_deg"))
+        camera.fov_deg = v->in_open(0.0f, 180.0f);
+    reader.finish();
+    const Vec3 forward = camera.look_at - camera.position;
+    if (!(glm::length(forward) > 0.0f))
+        node.fail("position and look_at must differ");
+    if (!(glm::length(glm::cross(glm::normalize(forward), camera.up)) > 1e-6f)) {
+        node.fail("up must not be parallel to the view direction");
+    }
+    return camera;
+}
+
+int parse_int_in(const JsonNode& node, int64_t lo, int64_t hi) {
+    const int64_t v = node.as_int();
+    if (v < lo || v > hi) {
+        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+    return static_cast<int>(v);
+}
+
+FilmDesc parse_film(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    FilmDesc film;
+    if (auto v = reader.optional("width"))
+        film.width = parse_int_in(*v, 1, 16384);
+    if (auto v = reader.optional("height"))
+        film.height = parse_int_in(*v, 1, 16384);
+    if (auto v = reader.optional("spp"))
+        film.spp = parse_int_in(*v, 1, 1 << 20);
+    reader.finish();
+    return film;
+}
+
+RenderSettings parse_render(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    RenderSettings render;
+    if (auto v = reader.optional("seed")) {
+        const int64_t seed = v->as_int();
+        if (seed < 0)
+            v->fail("must be >= 0");
+        render.seed = static_cast<uint64_t>(seed);
+    }
+    if (auto v = reader.optional("threads"))
+        render.threads = parse_int_in(*v, 0, 1024);
+    if (auto v = reader.optional("tile_size"))
+        render.tile_size = parse_int_in(*v, 1, 1024);
+    if (auto v = reader.optional("shadows"))
+        render.shadows = v->as_bool();
+    if (auto v = reader.optional("volume")) {
+        JsonObjectReader volume(*v);
+        if (auto step = volume.optional("step_m"))
+            render.volume.step_m = step->positive();
+        volume.finish();
+    }
+    if (auto v = reader.optional("preview")) {
+        JsonObjectReader preview(*v);
+        if (auto view = preview.optional("view"))
+            render.preview.view = view->as_string();
+        if (auto e = preview.optional("exposure_stops"))
+            render.preview.exposure_stops = e->as_float();
+        preview.finish();
+    }
+    reader.finish();
+    return render;
+}
+
+/// Walks a JSON pointer to the parent container of its last token; fails unless it exists.
+Json& pointer_parent(Json& root, const std::string& pointer, const std::string& file,
+                     std::string& last_token) {
+    const auto slash = pointer.rfind('/');
+    const std::string parent = pointer.substr(0, slash);
+    last_token = pointer.substr(slash + 1);
+    try {
+        Json& container = root.at(Json::json_pointer(parent));
+        if (!container.is_object() && !container.is_array()) {
+            throw_input_error(file + ": --set " + pointer + ": " + (parent.empty() ? "/" : parent) +
+                              " is not an object or array");
+        }
+        return container;
+    } catch (const Json::exception&) {
+        throw_input_error(file + ": --set " + pointer + ": " + (parent.empty() ? "/" : parent) +
+                          " does not exist in the scene");
+    }
+}
+
+}  // namespace
+
+Override parse_override(const std::string& text) {
+    const auto eq = text.find('=');
+    if (text.empty() || text[0] != '/' || eq == std::string::npos) {
+        throw Error(ErrorKind::Usage, "--set expects /json/pointer=VALUE, got \"" + text + "\"");
+    }
+    return Override{text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void apply_overrides(Json& root, const std::vector<Override>& overrides, const std::string& file) {
+    for (const Override& o : overrides) {
+        Json value;
+        try {
+            value = Json::parse(o.value);
+        } catch (const Json::parse_error&) {
+            value = o.value;  // not JSON: a string
+        }
+        try {
+            (void)Json::json_pointer(o.pointer);
+        } catch (const Json::exception& e) {
+            throw Error(ErrorKind::Usage, "--set " + o.pointer + ": invalid JSON pointer");
+        }
+        std::string token;
+        Json& parent = pointer_parent(root, o.pointer, file, token);
+        if (parent.is_array()) {
+            std::size_t index = 0;
+            try {
+                index = std::stoul(token);
+            } catch (const std::exception&) {
+                throw_input_error(file + ": --set " + o.pointer + ": \"" + token +
+                                  "\" is not an array index");
+            }
+            if (index >= parent.size()) {
+                throw_input_error(file + ": --set " + o.pointer + ": index out of range");
+            }
+            parent[index] = value;
+        } else {
+            root[Json::json_pointer(o.pointer)] = value;
+        }
+    }
+}
+
+SceneDesc parse_scene(const Json& root_value, const std::string& file) {
+    const JsonNode root(root_value, file);
+    JsonObjectReader reader(root);
+    SceneDesc scene;
+    scene.file = file;
+    scene.base_dir = std::filesystem::path(file).parent_path().string();
+
+    if (auto v = reader.optional("camera"))
+        scene.camera = parse_camera(*v);
+    if (auto v = reader.optional("film"))
+        scene.film = parse_film(*v);
+    if (auto v = reader.optional("render"))
+        scene.render = parse_render(*v);
+    if (auto v = reader.optional("ambient"))
+        scene.ambient = v->non_negative_rgb();
+    if (auto v = reader.optional("background"))
+        scene.background = v->non_negative_rgb();
+
+    std::map<std::string, uint32_t> material_index;
+    if (auto v = reader.optional("materials")) {
+        if (!v->is_object())
+            v->fail("expected an object of named materials");
+        for (const auto& item : v->value().items()) {
+            const JsonNode m = v->child(item.key());
+            material_index[item.key()] = static_cast<uint32_t>(scene.materials.size());
+            scene.material_names.push_back(item.key());
+            scene.materials.push_back(parse_material(m));
+        }
+    }
+    if (auto v = reader.optional("shapes")) {
+        for (const JsonNode& s : v->elements()) {
+            scene.shapes.push_back(parse_shape(s, material_index, scene.base_dir));
+        }
+    }
+    if (auto v = reader.optional("lights")) {
+        for (const JsonNode& l : v->elements()) {
+            scene.lights.push_back(parse_light(l, scene.lights.size()));
+        }
+    }
+    if (auto v = reader.optional("media")) {
+        if (v->size() > kMaxMedia)
+            v->fail("at most " + std::to_string(kMaxMedia) + " media");
+        for (const JsonNode& m : v->elements()) {
+            scene.media.push_back(parse_medium(m, scene.media.size()));
+        }
+    }
+    reader.optional("comment");  // free text for the scene's author
+    reader.finish();
+    return scene;
+}
+
+SceneDesc load_scene(const std::string& path, const std::vector<Override>& overrides) {
+    Json root = read_json_file(path);
+    apply_overrides(root, overrides, path);
+    return parse_scene(root, path);
+}
+
+}  // namespace kasumi

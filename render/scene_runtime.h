@@ -1,0 +1,47 @@
+#pragma once
+/// What the renderer builds from a scene description, stage by stage as the plan says: the
+/// Embree scene only with shapes, the media only with media.
+#include "core/camera.h"
+#include "core/scene_queries.h"
+#include "render/plan.h"
+#include "render/scene.h"
+#include "surface/surface_scene.h"
+#include "volume/medium_set.h"
+
+#include <memory>
+
+namespace kasumi {
+
+/// Occlusion by the scene's surfaces for the volume and surface stages.
+class SurfaceOcclusion final : public OcclusionQuery {
+  public:
+    explicit SurfaceOcclusion(const SurfaceScene& scene) : m_scene(scene) {}
+    bool occluded(const Vec3& from, const Vec3& to) const override;
+    bool occluded_direction(const Vec3& from, const Vec3& direction) const override;
+
+  private:
+    const SurfaceScene& m_scene;
+};
+
+class SceneRuntime {
+  public:
+    explicit SceneRuntime(SceneDesc desc);
+
+    const SceneDesc& desc() const { return m_desc; }
+    const Plan& plan() const { return m_plan; }
+    const Camera& camera() const { return m_camera; }
+    const SurfaceScene* surfaces() const { return m_surfaces.get(); }
+    const MediumSet& media() const { return m_media; }
+    /// Null when the plan has no shadow rays.
+    const OcclusionQuery* occlusion() const { return m_occlusion.get(); }
+
+  private:
+    SceneDesc m_desc;
+    Plan m_plan;
+    Camera m_camera;
+    std::unique_ptr<SurfaceScene> m_surfaces;
+    std::unique_ptr<SurfaceOcclusion> m_occlusion;
+    MediumSet m_media;
+};
+
+}  // namespace kasumi
