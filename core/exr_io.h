@@ -1,0 +1,28 @@
+#pragma once
+/// OpenEXR output and input of an Image (OpenEXR headers stay in exr_io.cpp).
+///
+/// Files are single-part scanline EXRs, ZIP-compressed, one FLOAT channel per image channel
+/// under the channel's own name ("R", "albedo.R", "depth.Z", ...), with the standard
+/// `chromaticities` attribute. Each metadata pair (key, value) is a string attribute named
+/// "kasumi/<key>" (the prefix keeps our keys apart from the standard attributes).
+#include "core/image.h"
+
+#include <string>
+
+namespace kasumi {
+
+/// Prefix of the EXR attribute names that hold Image::metadata.
+inline constexpr const char* kExrMetadataPrefix = "kasumi/";
+
+/// Writes `image` to `path` atomically (a temporary beside it, then a rename): never a
+/// half-written file. Throws ErrorKind::Runtime, before touching the disk, if a channel holds a
+/// NaN or an infinity (naming channel and pixel) or has the wrong size; ErrorKind::Output naming
+/// `path` if it cannot be written (no file is left behind).
+void write_exr(const Image& image, const std::string& path);
+
+/// Reads every channel of `path` as float (top row first) and its string attributes: those named
+/// "kasumi/<key>" become metadata <key>, other string attributes keep their full name. Missing
+/// chromaticities read as Rec.709. Throws ErrorKind::Input naming `path` on failure.
+Image read_exr(const std::string& path);
+
+}  // namespace kasumi

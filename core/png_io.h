@@ -1,0 +1,20 @@
+#pragma once
+/// A small PNG encoder on zlib (ISO/IEC 15948, PNG 1.2): 8-bit RGB, non-interlaced.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+/// Encodes an 8-bit RGB image (`rgb` holds width * height * 3 bytes, row-major, top row first)
+/// as a PNG file in memory: signature, IHDR, one IDAT, IEND. Each row takes the filter
+/// (None, Sub, Up, Average, Paeth) with the smallest sum of absolute filtered bytes, the
+/// heuristic of PNG spec section 12.8. Throws ErrorKind::Runtime on bad sizes.
+std::vector<uint8_t> encode_png_rgb8(int width, int height, const std::vector<uint8_t>& rgb);
+
+/// Writes encode_png_rgb8(...) to `path` atomically (temporary beside it, then rename).
+/// Throws ErrorKind::Output naming `path` if it cannot be written; no file is left behind.
+void write_png_rgb8(int width, int height, const std::vector<uint8_t>& rgb,
+                    const std::string& path);
+
+}  // namespace kasumi
