@@ -5,21 +5,29 @@
 namespace kasumi {
 
 float eval(const HenyeyGreenstein& p, float mu) {
-    const float g = p.g;
-    const float denom = 1.0f + g * g - 2.0f * g * mu;
-    return kInv4Pi * (1.0f - g * g) / (denom * safe_sqrt(denom));
+    // 1 + g² - 2 g mu written as (1 - g)² + 2 g (1 - mu): the textbook form cancels
+    // catastrophically near g = 1, mu = 1 (for g = 0.9999 in float it is pure rounding noise).
+    const double g = p.g;
+    const double denom = (1.0 - g) * (1.0 - g) + 2.0 * g * (1.0 - static_cast<double>(mu));
+    return static_cast<float>((1.0 - g) * (1.0 + g) / (4.0 * kPiD * denom * std::sqrt(denom)));
 }
 
 float pdf(const HenyeyGreenstein& p, float mu) {
     return eval(p, mu);
 }
 
-float sample_hg_cosine(float g, float u) {
-    // Near g = 0 the inversion formula divides by g; its limit is the uniform cosine.
-    if (std::abs(g) < 1e-3f)
-        return 1.0f - 2.0f * u;
-    const float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
-    return std::clamp((1.0f + g * g - s * s) / (2.0f * g), -1.0f, 1.0f);
+float sample_hg_cosine(float g_in, float u_in) {
+    const double g = g_in, u = std::clamp(static_cast<double>(u_in), 0.0, 1.0);
+    // Near g = 0 the inversion divides by g; its limit is the uniform cosine, and the first
+    // neglected term is O(g) relative, below float precision for |g| < 1e-7.
+    if (std::abs(g) < 1e-7)
+        return static_cast<float>(2.0 * u - 1.0);
+    // s = sqrt(1 + g² - 2 g mu) at the sampled mu, then mu = (1 + g² - s²) / (2g). Double
+    // precision keeps 1 - mu accurate to ~1e-8 relative for g = ±0.9999, where float would
+    // lose every digit of the forward peak.
+    const double s = (1.0 - g) * (1.0 + g) / (1.0 - g + 2.0 * g * u);
+    const double mu = (1.0 + g * g - s * s) / (2.0 * g);
+    return static_cast<float>(std::clamp(mu, -1.0, 1.0));
 }
 
 PhaseSample sample(const HenyeyGreenstein& p, const Vec3& wo, Vec2 u) {

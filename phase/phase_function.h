@@ -3,14 +3,24 @@
 /// free eval / pdf / sample functions (no virtual call per sample). Convention: wo toward the
 /// viewer, wi toward the light, mu = -dot(wo, wi); values and pdfs are per steradian and every
 /// model integrates to 1 over the sphere.
+#include "phase/cornette_shanks.h"
+#include "phase/double_henyey_greenstein.h"
+#include "phase/draine.h"
 #include "phase/henyey_greenstein.h"
 #include "phase/isotropic.h"
+#include "phase/jendersie_deon.h"
+#include "phase/mie.h"
+#include "phase/rayleigh.h"
+#include "phase/tabulated.h"
 
 #include <variant>
 
 namespace kasumi {
 
-using PhaseFunction = std::variant<Isotropic, HenyeyGreenstein>;
+/// Heavy models (Tabulated, Mie) hold their tables through shared_ptr<const ...>, so copying a
+/// PhaseFunction never copies a table.
+using PhaseFunction = std::variant<Isotropic, HenyeyGreenstein, Rayleigh, DoubleHenyeyGreenstein,
+                                   CornetteShanks, Draine, JendersieDeon, Tabulated, Mie>;
 
 inline float eval(const PhaseFunction& p, float mu) {
     return std::visit([mu](const auto& model) { return eval(model, mu); }, p);

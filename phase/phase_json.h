@@ -1,7 +1,11 @@
 #pragma once
-/// Reads a phase function from a scene's JSON: {"model": "isotropic" | "hg", ...}.
+/// Reads a phase function from a scene's JSON: {"model": NAME, parameters...}; see docs/phase.md
+/// for every model's parameters, ranges and defaults.
 #include "core/json_node.h"
 #include "phase/phase_function.h"
+
+#include <string>
+#include <vector>
 
 namespace kasumi {
 
@@ -10,5 +14,8 @@ PhaseFunction parse_phase(const JsonNode& node);
 
 /// The model's name as written in scene files.
 std::string phase_model_name(const PhaseFunction& p);
+
+/// Every model name parse_phase accepts.
+const std::vector<std::string>& phase_model_names();
 
 }  // namespace kasumi

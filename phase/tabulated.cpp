@@ -1,0 +1,21 @@
+#include "phase/tabulated.h"
+
+namespace kasumi {
+
+float eval(const Tabulated& p, float mu) {
+    return static_cast<float>(p.table->eval(mu));
+}
+
+float pdf(const Tabulated& p, float mu) {
+    return eval(p, mu);
+}
+
+PhaseSample sample(const Tabulated& p, const Vec3& wo, Vec2 u) {
+    return sample_phase_table(*p.table, wo, u);
+}
+
+float mean_cosine(const Tabulated& p) {
+    return static_cast<float>(p.table->mean_cosine());
+}
+
+}  // namespace kasumi
