@@ -1,0 +1,427 @@
+#include "surface/surface_scene.h"
+
+#include "core/error.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <mutex>
+#include <string>
+
+namespace kasumi {
+
+namespace {
+
+/// One shape as Embree sees it. Boxes, quads and meshes are triangles; spheres are a user
+/// geometry intersected in double precision.
+struct Geometry {
+    bool is_sphere = false;
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;  ///< per vertex, or empty
+    std::vector<std::array<uint32_t, 3>> triangles;
+    DVec3 center{0.0};
+    double radius = 0.0;
+    uint32_t material = 0;
+};
+
+void add_quad(Geometry& g, const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& v3) {
+    const auto base = static_cast<uint32_t>(g.positions.size());
+    g.positions.insert(g.positions.end(), {v0, v1, v2, v3});
+    // Both triangles keep the quad's winding, so cross(v1 - v0, v2 - v0) is the front side.
+    g.triangles.push_back({base, base + 1, base + 2});
+    g.triangles.push_back({base, base + 2, base + 3});
+}
+
+Geometry make_geometry(const SphereShape& s) {
+    Geometry g;
+    g.is_sphere = true;
+    g.center = DVec3(s.center);
+    g.radius = s.radius;
+    return g;
+}
+
+Geometry make_geometry(const QuadShape& q) {
+    Geometry g;
+    add_quad(g, q.vertices[0], q.vertices[1], q.vertices[2], q.vertices[3]);
+    return g;
+}
+
+Geometry make_geometry(const BoxShape& b) {
+    Geometry g;
+    for (int axis = 0; axis < 3; ++axis) {
+        // (axis, u, v) is a cyclic permutation of (x, y, z), so cross(e_u, e_v) = e_axis:
+        // corners ordered (0,0), (1,0), (1,1), (0,1) in (u, v) wind counter-clockwise toward
+        // +axis; the face at min is wound the other way round so both face outward.
+        const int u = (axis + 1) % 3;
+        const int v = (axis + 2) % 3;
+        for (int side = 0; side < 2; ++side) {
+            const float w = side ? b.max[axis] : b.min[axis];
+            Vec3 c[4];
+            const float uv[4][2] = {{b.min[u], b.min[v]},
+                                    {b.max[u], b.min[v]},
+                                    {b.max[u], b.max[v]},
+                                    {b.min[u], b.max[v]}};
+            for (int k = 0; k < 4; ++k) {
+                c[k][axis] = w;
+                c[k][u] = uv[k][0];
+                c[k][v] = uv[k][1];
+            }
+            if (side)
+                add_quad(g, c[0], c[1], c[2], c[3]);
+            else
+                add_quad(g, c[0], c[3], c[2], c[1]);
+        }
+    }
+    return g;
+}
+
+Geometry make_geometry(const MeshShape& m) {
+    Geometry g;
+    g.positions = m.mesh.positions;
+    g.normals = m.mesh.normals;
+    g.triangles = m.mesh.triangles;
+    return g;
+}
+
+float max_abs(const Vec3& v) {
+    return std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+}
+
+/// Ray-sphere intersection in double precision, in the form of Haines et al., "Precision
+/// Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7, 2019): the
+/// discriminant r² - |f - (f·d)d|² is taken from the perpendicular offset of the centre, which
+/// avoids the cancellation of b² - c for distant spheres, and the root nearer the origin is
+/// c / q, which avoids the cancellation of -b ± sqrt(Δ) for origins near the surface.
+/// Returns the first root in [t_near, t_far], or NaN.
+double intersect_sphere(const DVec3& center, double radius, const DVec3& origin,
+                        const DVec3& direction, double t_near, double t_far) {
+    const double a = glm::dot(direction, direction);
+    const DVec3 f = origin - center;
+    const double b = -glm::dot(f, direction);
+    const DVec3 perpendicular = f + (b / a) * direction;
+    const double discriminant = a * (radius * radius - glm::dot(perpendicular, perpendicular));
+    if (!(discriminant >= 0.0))
+        return std::numeric_limits<double>::quiet_NaN();
+    const double length = std::sqrt(glm::dot(f, f));
+    const double c = (length - radius) * (length + radius);
+    const double q = b + std::copysign(std::sqrt(discriminant), b);
+    double t0 = c / q;
+    double t1 = q / a;
+    if (q == 0.0)  // the centre is on the origin (c = -r² < 0): roots ±r/|d|
+        t0 = -(t1 = radius / std::sqrt(a));
+    if (t0 > t1)
+        std::swap(t0, t1);
+    if (t0 >= t_near && t0 <= t_far)
+        return t0;
+    if (t1 >= t_near && t1 <= t_far)
+        return t1;
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+    const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
+    RTCBounds* out = args->bounds_o;
+    // Round outward so the float box contains the double sphere.
+    const auto down = [](double x) {
+        return std::nextafter(static_cast<float>(x), -std::numeric_limits<float>::infinity());
+    };
+    const auto up = [](double x) {
+        return std::nextafter(static_cast<float>(x), std::numeric_limits<float>::infinity());
+    };
+    out->lower_x = down(g->center.x - g->radius);
+    out->lower_y = down(g->center.y - g->radius);
+    out->lower_z = down(g->center.z - g->radius);
+    out->upper_x = up(g->center.x + g->radius);
+    out->upper_y = up(g->center.y + g->radius);
+    out->upper_z = up(g->center.z + g->radius);
+}
+
+void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+    const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i])
+            continue;
+        const DVec3 origin(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                           RTCRayN_org_z(ray, args->N, i));
+        const DVec3 direction(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
+                              RTCRayN_dir_z(ray, args->N, i));
+        const double t =
+            intersect_sphere(g->center, g->radius, origin, direction,
+                             RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
+        if (std::isnan(t))
+            continue;
+        const DVec3 n = origin + t * direction - g->center;
+        RTCRayN_tfar(ray, args->N, i) = static_cast<float>(t);
+        RTCHitN_Ng_x(hit, args->N, i) = static_cast<float>(n.x);
+        RTCHitN_Ng_y(hit, args->N, i) = static_cast<float>(n.y);
+        RTCHitN_Ng_z(hit, args->N, i) = static_cast<float>(n.z);
+        RTCHitN_u(hit, args->N, i) = 0.0f;
+        RTCHitN_v(hit, args->N, i) = 0.0f;
+        RTCHitN_primID(hit, args->N, i) = args->primID;
+        RTCHitN_geomID(hit, args->N, i) = args->geomID;
+        RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+    }
+}
+
+void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+    const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
+    RTCRayN* ray = args->ray;
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (!args->valid[i])
+            continue;
+        const DVec3 origin(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
+                           RTCRayN_org_z(ray, args->N, i));
+        const DVec3 direction(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
+                              RTCRayN_dir_z(ray, args->N, i));
+        const double t =
+            intersect_sphere(g->center, g->radius, origin, direction,
+                             RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
+        if (!std::isnan(t))
+            RTCRayN_tfar(ray, args->N, i) = -std::numeric_limits<float>::infinity();
+    }
+}
+
+/// Embree's interval is closed, [tnear, tfar]; ours is open, (t_min, t_max).
+void set_interval(RTCRay& r, const Ray& ray) {
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x;
+    r.dir_y = ray.direction.y;
+    r.dir_z = ray.direction.z;
+    r.tnear = std::nextafter(std::max(ray.t_min, 0.0f), std::numeric_limits<float>::infinity());
+    r.tfar = std::nextafter(ray.t_max, 0.0f);
+    r.time = 0.0f;
+    r.mask = ~0u;
+    r.id = 0;
+    r.flags = 0;
+}
+
+}  // namespace
+
+struct SurfaceScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<Geometry> geometries;
+    uint64_t primitives = 0;
+    Bounds3 bounds;
+    mutable std::atomic<uint64_t> closest_rays{0};
+    mutable std::atomic<uint64_t> shadow_rays{0};
+    std::mutex error_mutex;
+    std::string error;  ///< the first error Embree reported, if any
+
+    /// Embree calls this from inside its C API, where exceptions must not pass: record the
+    /// message, and throw from check() once control is back in our code.
+    static void on_error(void* user, RTCError code, const char* message) {
+        auto* self = static_cast<Impl*>(user);
+        const std::lock_guard<std::mutex> lock(self->error_mutex);
+        if (self->error.empty())
+            self->error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
+                          (message ? message : "(no message)");
+    }
+
+    void check(const char* during) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error.empty())
+            throw Error(ErrorKind::Runtime, std::string(during) + ": " + error);
+    }
+
+    ~Impl() {
+        if (scene)
+            rtcReleaseScene(scene);
+        if (device)
+            rtcReleaseDevice(device);
+    }
+};
+
+SurfaceScene::SurfaceScene(const std::vector<Shape>& shapes) : m_impl(std::make_unique<Impl>()) {
+    Impl& impl = *m_impl;
+    impl.device = rtcNewDevice(nullptr);
+    if (!impl.device)
+        throw Error(ErrorKind::Runtime,
+                    "cannot create the Embree device (error " +
+                        std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+    rtcSetDeviceErrorFunction(impl.device, &Impl::on_error, &impl);
+    if (!rtcGetDeviceProperty(impl.device, RTC_DEVICE_PROPERTY_USER_GEOMETRY_SUPPORTED) ||
+        !rtcGetDeviceProperty(impl.device, RTC_DEVICE_PROPERTY_TRIANGLE_GEOMETRY_SUPPORTED))
+        throw Error(ErrorKind::Runtime, "Embree lacks triangle or user geometry support");
+    if (rtcGetDeviceProperty(impl.device, RTC_DEVICE_PROPERTY_BACKFACE_CULLING_ENABLED))
+        throw Error(ErrorKind::Runtime,
+                    "Embree was built with back-face culling; kasumi "
+                    "needs hits on both sides of a surface");
+
+    impl.scene = rtcNewScene(impl.device);
+    rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
+
+    impl.geometries.reserve(shapes.size());
+    for (const Shape& shape : shapes) {
+        impl.geometries.push_back(
+            std::visit([](const auto& s) { return make_geometry(s); }, shape.geometry));
+        impl.geometries.back().material = shape.material;
+    }
+    // The geometries' addresses are stable from here on: Embree keeps pointers to spheres.
+    for (size_t id = 0; id < impl.geometries.size(); ++id) {
+        Geometry& g = impl.geometries[id];
+        RTCGeometry geometry = nullptr;
+        if (g.is_sphere) {
+            geometry = rtcNewGeometry(impl.device, RTC_GEOMETRY_TYPE_USER);
+            rtcSetGeometryUserPrimitiveCount(geometry, 1);
+            rtcSetGeometryUserData(geometry, &g);
+            rtcSetGeometryBoundsFunction(geometry, &sphere_bounds, nullptr);
+            rtcSetGeometryIntersectFunction(geometry, &sphere_intersect);
+            rtcSetGeometryOccludedFunction(geometry, &sphere_occluded);
+            impl.primitives += 1;
+        } else {
+            geometry = rtcNewGeometry(impl.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            // Embree-owned buffers: Embree pads them for its vector loads.
+            auto* vertices = static_cast<float*>(
+                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                        3 * sizeof(float), g.positions.size()));
+            auto* indices = static_cast<uint32_t*>(
+                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                        3 * sizeof(uint32_t), g.triangles.size()));
+            impl.check("creating Embree buffers");
+            std::memcpy(vertices, g.positions.data(), g.positions.size() * sizeof(Vec3));
+            std::memcpy(indices, g.triangles.data(), g.triangles.size() * 3 * sizeof(uint32_t));
+            rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+            impl.primitives += g.triangles.size();
+        }
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometryByID(impl.scene, geometry, static_cast<unsigned>(id));
+        rtcReleaseGeometry(geometry);
+        impl.check("building Embree geometry");
+    }
+    rtcCommitScene(impl.scene);
+    impl.check("building the Embree BVH");
+    if (!impl.geometries.empty()) {
+        RTCBounds b;
+        rtcGetSceneBounds(impl.scene, &b);
+        impl.bounds.min = Vec3(b.lower_x, b.lower_y, b.lower_z);
+        impl.bounds.max = Vec3(b.upper_x, b.upper_y, b.upper_z);
+    }
+}
+
+SurfaceScene::~SurfaceScene() = default;
+
+std::optional<SurfaceHit> SurfaceScene::intersect(const Ray& ray) const {
+    m_impl->closest_rays.fetch_add(1, std::memory_order_relaxed);
+    KASUMI_DCHECK(std::abs(glm::dot(ray.direction, ray.direction) - 1.0f) < 1e-4f);
+    if (!(ray.t_min < ray.t_max))
+        return std::nullopt;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rayhit;
+    set_interval(rayhit.ray, ray);
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_impl->scene, &context, &rayhit);
+    if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return std::nullopt;
+
+    const Geometry& g = m_impl->geometries[rayhit.hit.geomID];
+    SurfaceHit hit;
+    hit.t = rayhit.ray.tfar;
+    hit.shape = rayhit.hit.geomID;
+    hit.material = g.material;
+    const DVec3 origin(ray.origin);
+    const DVec3 direction(ray.direction);
+    const DVec3 p = origin + static_cast<double>(hit.t) * direction;
+    if (g.is_sphere) {
+        // Recompute in double from the float t, then project onto the sphere: the position is
+        // then within float rounding of the surface whatever the ray's length.
+        DVec3 n = p - g.center;
+        const double length = glm::length(n);
+        n = length > 0.0 ? n / length : DVec3(0.0, 0.0, 1.0);
+        hit.position = Vec3(g.center + g.radius * n);
+        hit.geometric_normal = Vec3(n);
+        hit.shading_normal = hit.geometric_normal;
+        // Double arithmetic leaves ~2^-50 (|c| + r) of error: a scale 2^-30 (|c| + r) makes
+        // the offset 2^-47 (|c| + r), far above it, so planet-sized spheres still get offsets
+        // set by |p| alone.
+        hit.error_scale = static_cast<float>((glm::length(g.center) + g.radius) * 0x1p-30);
+        return hit;
+    }
+
+    const auto& tri = g.triangles[rayhit.hit.primID];
+    const DVec3 v0(g.positions[tri[0]]);
+    const DVec3 v1(g.positions[tri[1]]);
+    const DVec3 v2(g.positions[tri[2]]);
+    const DVec3 cross = glm::cross(v1 - v0, v2 - v0);
+    const double area2 = glm::length(cross);
+    DVec3 n = area2 > 0.0
+                  ? cross / area2
+                  : glm::normalize(DVec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
+    // Project onto the triangle's plane: removes the error t carries along the ray.
+    hit.position = Vec3(p - glm::dot(p - v0, n) * n);
+    hit.error_scale = std::max(max_abs(Vec3(v0)), std::max(max_abs(Vec3(v1)), max_abs(Vec3(v2))));
+    hit.shading_normal = Vec3(n);
+    if (!g.normals.empty()) {
+        // Embree's barycentrics: p = (1 - u - v) v0 + u v1 + v v2.
+        const float u = rayhit.hit.u;
+        const float v = rayhit.hit.v;
+        const Vec3 interpolated =
+            (1.0f - u - v) * g.normals[tri[0]] + u * g.normals[tri[1]] + v * g.normals[tri[2]];
+        const float length = glm::length(interpolated);
+        if (length > 0.0f && std::isfinite(length)) {
+            hit.shading_normal = interpolated / length;
+            // Authored normals say which side is out (pbrt-v4's convention): the geometric
+            // normal follows them, so a mesh with inconsistent winding still faces outward.
+            if (glm::dot(DVec3(hit.shading_normal), n) < 0.0)
+                n = -n;
+        }
+    }
+    hit.geometric_normal = Vec3(n);
+    return hit;
+}
+
+bool SurfaceScene::occluded(const Ray& ray) const {
+    m_impl->shadow_rays.fetch_add(1, std::memory_order_relaxed);
+    KASUMI_DCHECK(std::abs(glm::dot(ray.direction, ray.direction) - 1.0f) < 1e-4f);
+    if (!(ray.t_min < ray.t_max))
+        return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r;
+    set_interval(r, ray);
+    rtcOccluded1(m_impl->scene, &context, &r);
+    // Embree marks a blocked ray by setting tfar to -inf.
+    return r.tfar < 0.0f;
+}
+
+Bounds3 SurfaceScene::bounds() const {
+    return m_impl->bounds;
+}
+
+SurfaceStats SurfaceScene::stats() const {
+    SurfaceStats s;
+    s.closest_rays = m_impl->closest_rays.load(std::memory_order_relaxed);
+    s.shadow_rays = m_impl->shadow_rays.load(std::memory_order_relaxed);
+    s.primitives = m_impl->primitives;
+    return s;
+}
+
+namespace {
+
+Vec3 offset_along_normal(const Vec3& p, const Vec3& n, const Vec3& direction, float scale) {
+    const float offset = kRayOffsetRelative * (kRayOffsetFloor + scale);
+    return glm::dot(n, direction) >= 0.0f ? p + offset * n : p - offset * n;
+}
+
+}  // namespace
+
+Vec3 offset_ray_origin(const Vec3& p, const Vec3& n, const Vec3& direction) {
+    return offset_along_normal(p, n, direction, max_abs(p));
+}
+
+Vec3 offset_ray_origin(const SurfaceHit& hit, const Vec3& direction) {
+    return offset_along_normal(hit.position, hit.geometric_normal, direction,
+                               std::max(max_abs(hit.position), hit.error_scale));
+}
+
+}  // namespace kasumi
