@@ -1,6 +1,7 @@
 #include "surface/surface_scene.h"
 
 #include "core/error.h"
+#include "surface/ray_sphere.h"
 
 #include <embree3/rtcore.h>
 
@@ -78,46 +79,15 @@ Geometry make_geometry(const BoxShape& b) {
 }
 
 Geometry make_geometry(const MeshShape& m) {
+    for (const auto& triangle : m.mesh.triangles)
+        for (const uint32_t index : triangle)
+            KASUMI_CHECK(index < m.mesh.positions.size());
+    KASUMI_CHECK(m.mesh.normals.empty() || m.mesh.normals.size() == m.mesh.positions.size());
     Geometry g;
     g.positions = m.mesh.positions;
     g.normals = m.mesh.normals;
     g.triangles = m.mesh.triangles;
     return g;
-}
-
-float max_abs(const Vec3& v) {
-    return std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
-}
-
-/// Ray-sphere intersection in double precision, in the form of Haines et al., "Precision
-/// Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7, 2019): the
-/// discriminant r² - |f - (f·d)d|² is taken from the perpendicular offset of the centre, which
-/// avoids the cancellation of b² - c for distant spheres, and the root nearer the origin is
-/// c / q, which avoids the cancellation of -b ± sqrt(Δ) for origins near the surface.
-/// Returns the first root in [t_near, t_far], or NaN.
-double intersect_sphere(const DVec3& center, double radius, const DVec3& origin,
-                        const DVec3& direction, double t_near, double t_far) {
-    const double a = glm::dot(direction, direction);
-    const DVec3 f = origin - center;
-    const double b = -glm::dot(f, direction);
-    const DVec3 perpendicular = f + (b / a) * direction;
-    const double discriminant = a * (radius * radius - glm::dot(perpendicular, perpendicular));
-    if (!(discriminant >= 0.0))
-        return std::numeric_limits<double>::quiet_NaN();
-    const double length = std::sqrt(glm::dot(f, f));
-    const double c = (length - radius) * (length + radius);
-    const double q = b + std::copysign(std::sqrt(discriminant), b);
-    double t0 = c / q;
-    double t1 = q / a;
-    if (q == 0.0)  // the centre is on the origin (c = -r² < 0): roots ±r/|d|
-        t0 = -(t1 = radius / std::sqrt(a));
-    if (t0 > t1)
-        std::swap(t0, t1);
-    if (t0 >= t_near && t0 <= t_far)
-        return t0;
-    if (t1 >= t_near && t1 <= t_far)
-        return t1;
-    return std::numeric_limits<double>::quiet_NaN();
 }
 
 void sphere_bounds(const RTCBoundsFunctionArguments* args) {
@@ -149,13 +119,13 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
                            RTCRayN_org_z(ray, args->N, i));
         const DVec3 direction(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
                               RTCRayN_dir_z(ray, args->N, i));
-        const double t =
+        const std::optional<double> t =
             intersect_sphere(g->center, g->radius, origin, direction,
                              RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
-        if (std::isnan(t))
+        if (!t)
             continue;
-        const DVec3 n = origin + t * direction - g->center;
-        RTCRayN_tfar(ray, args->N, i) = static_cast<float>(t);
+        const DVec3 n = origin + *t * direction - g->center;
+        RTCRayN_tfar(ray, args->N, i) = static_cast<float>(*t);
         RTCHitN_Ng_x(hit, args->N, i) = static_cast<float>(n.x);
         RTCHitN_Ng_y(hit, args->N, i) = static_cast<float>(n.y);
         RTCHitN_Ng_z(hit, args->N, i) = static_cast<float>(n.z);
@@ -177,10 +147,8 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
                            RTCRayN_org_z(ray, args->N, i));
         const DVec3 direction(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
                               RTCRayN_dir_z(ray, args->N, i));
-        const double t =
-            intersect_sphere(g->center, g->radius, origin, direction,
-                             RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
-        if (!std::isnan(t))
+        if (intersect_sphere(g->center, g->radius, origin, direction,
+                             RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i)))
             RTCRayN_tfar(ray, args->N, i) = -std::numeric_limits<float>::infinity();
     }
 }
@@ -359,7 +327,9 @@ std::optional<SurfaceHit> SurfaceScene::intersect(const Ray& ray) const {
                   : glm::normalize(DVec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
     // Project onto the triangle's plane: removes the error t carries along the ray.
     hit.position = Vec3(p - glm::dot(p - v0, n) * n);
-    hit.error_scale = std::max(max_abs(Vec3(v0)), std::max(max_abs(Vec3(v1)), max_abs(Vec3(v2))));
+    hit.error_scale = max_abs_coordinate(
+        glm::max(glm::abs(g.positions[tri[0]]),
+                 glm::max(glm::abs(g.positions[tri[1]]), glm::abs(g.positions[tri[2]]))));
     hit.shading_normal = Vec3(n);
     if (!g.normals.empty()) {
         // Embree's barycentrics: p = (1 - u - v) v0 + u v1 + v v2.
@@ -404,24 +374,6 @@ SurfaceStats SurfaceScene::stats() const {
     s.shadow_rays = m_impl->shadow_rays.load(std::memory_order_relaxed);
     s.primitives = m_impl->primitives;
     return s;
-}
-
-namespace {
-
-Vec3 offset_along_normal(const Vec3& p, const Vec3& n, const Vec3& direction, float scale) {
-    const float offset = kRayOffsetRelative * (kRayOffsetFloor + scale);
-    return glm::dot(n, direction) >= 0.0f ? p + offset * n : p - offset * n;
-}
-
-}  // namespace
-
-Vec3 offset_ray_origin(const Vec3& p, const Vec3& n, const Vec3& direction) {
-    return offset_along_normal(p, n, direction, max_abs(p));
-}
-
-Vec3 offset_ray_origin(const SurfaceHit& hit, const Vec3& direction) {
-    return offset_along_normal(hit.position, hit.geometric_normal, direction,
-                               std::max(max_abs(hit.position), hit.error_scale));
 }
 
 }  // namespace kasumi

@@ -53,6 +53,11 @@ class SurfaceScene {
     std::unique_ptr<Impl> m_impl;
 };
 
+/// max(|v.x|, |v.y|, |v.z|): the scale that sets a point's float rounding error.
+inline float max_abs_coordinate(const Vec3& v) {
+    return std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+}
+
 /// Relative size of the ray-origin offset: 2^-18 ≈ 3.8e-6, i.e. 64 float ulps (2^-24) of the
 /// scale. An Embree triangle hit is off its plane by a few ulps of the largest coordinate
 /// involved (vertices and ray origin); measured: self-hits vanish from 4 ulps on

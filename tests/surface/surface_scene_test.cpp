@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 namespace kasumi {
 namespace {
@@ -289,6 +290,40 @@ TEST(SurfaceScene, LampPostMeshFacesOutward) {
         EXPECT_GT(glm::dot(hit->shading_normal, hit->geometric_normal), 0.0f) << i;
     }
     EXPECT_GT(hits, 500);
+}
+
+/// Queries from several threads at once: same answers as one thread, and exact counters.
+TEST(SurfaceScene, ConcurrentQueriesAgreeAndCount) {
+    const SurfaceScene scene(mixed_scene());
+    constexpr int kThreads = 4, kRays = 5000;
+    std::vector<Ray> rays(kRays);
+    Pcg32 rng(13, 1);
+    for (Ray& ray : rays) {
+        ray.origin = 6.0f * (Vec3(rng.next_float(), rng.next_float(), rng.next_float()) - 0.5f);
+        ray.direction = sample_uniform_sphere(rng.next_vec2());
+    }
+    std::vector<float> expected(kRays);
+    for (int i = 0; i < kRays; ++i) {
+        const auto hit = scene.intersect(rays[i]);
+        expected[i] = hit ? hit->t : -1.0f;
+    }
+    std::vector<int> mismatches(kThreads, 0);
+    std::vector<std::thread> threads;
+    for (int k = 0; k < kThreads; ++k) {
+        threads.emplace_back([&, k] {
+            for (int i = 0; i < kRays; ++i) {
+                const auto hit = scene.intersect(rays[i]);
+                mismatches[k] += (hit ? hit->t : -1.0f) != expected[i];
+                mismatches[k] += scene.occluded(rays[i]) != (expected[i] >= 0.0f);
+            }
+        });
+    }
+    for (std::thread& t : threads)
+        t.join();
+    for (int k = 0; k < kThreads; ++k)
+        EXPECT_EQ(mismatches[k], 0);
+    EXPECT_EQ(scene.stats().closest_rays, uint64_t(kRays) * (kThreads + 1));
+    EXPECT_EQ(scene.stats().shadow_rays, uint64_t(kRays) * kThreads);
 }
 
 }  // namespace
