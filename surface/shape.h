@@ -46,7 +46,14 @@ struct Shape {
 };
 
 /// Parses one entry of `shapes`; `materials` maps names to indices, `base_dir` resolves files
-/// (meshes are loaded here, so load errors name the scene file and JSON path).
+/// (meshes are loaded here, so load errors name the scene file and JSON path). Keys:
+///   {"type": "sphere", "center": [x, y, z], "radius": > 0}
+///   {"type": "quad", "vertices": [4 points]}: planar to 1e-4 of its size, convex, non-degenerate
+///   {"type": "box", "min": [x, y, z], "max": [x, y, z]}: max > min on every axis
+///   {"type": "mesh", "file": "x.obj", "translate": [0, 0, 0], "scale": 1 (> 0)}: positions
+///       become scale * p + translate
+/// and on every shape "material": a name in `materials` (required), "name" (default: the
+/// shape's JSON pointer, e.g. "/shapes/2"). Unknown keys and bad values throw input errors.
 Shape parse_shape(const JsonNode& node, const std::map<std::string, uint32_t>& materials,
                   const std::string& base_dir);
 

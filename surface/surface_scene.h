@@ -12,15 +12,18 @@
 
 namespace kasumi {
 
-/// A ray-surface intersection. Normals are unit length and point out of the shape (for quads:
-/// toward the front side); the integrator flips them toward the viewer as needed.
+/// A ray-surface intersection. Normals are unit length and point out of the shape (boxes and
+/// spheres: outward; quads and meshes: toward the side their vertices wind counter-clockwise
+/// toward, normalize(cross(v1 - v0, v2 - v0))); the integrator flips them toward the viewer.
+/// A mesh with vertex normals is the exception: its authored normals define the outside
+/// (pbrt-v4's convention), and the geometric normal is flipped to their side.
 struct SurfaceHit {
-    float t = 0.0f;
-    Vec3 position{0.0f};
+    float t = 0.0f;       ///< metres along the (unit) ray direction
+    Vec3 position{0.0f};  ///< world space; projected onto the hit sphere or triangle plane
     Vec3 geometric_normal{0.0f, 0.0f, 1.0f};
-    Vec3 shading_normal{0.0f, 0.0f, 1.0f};
-    uint32_t shape = 0;
-    uint32_t material = 0;
+    Vec3 shading_normal{0.0f, 0.0f, 1.0f};  ///< interpolated vertex normal, else geometric
+    uint32_t shape = 0;                     ///< index into the shapes the scene was built from
+    uint32_t material = 0;                  ///< the shape's material index
     /// Metres: the largest coordinate magnitude that entered the hit computation in float (the
     /// hit triangle's vertices; spheres are intersected in double and contribute ~0). The hit's
     /// rounding error scales with it, so offset_ray_origin(hit, direction) uses it.

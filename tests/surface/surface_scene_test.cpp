@@ -170,6 +170,21 @@ TEST(SurfaceScene, MeshNormalsAreInterpolatedWithBarycentrics) {
     EXPECT_EQ(hit->t, 2.0f);
 }
 
+TEST(SurfaceScene, AuthoredNormalsDecideTheOutsideOfAMisWoundMesh) {
+    MeshShape mesh;
+    mesh.mesh.positions = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0)};  // clockwise from +z
+    mesh.mesh.normals = {Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1)};
+    mesh.mesh.triangles = {{0, 1, 2}};
+    const SurfaceScene scene({make(mesh)});
+    Ray ray;
+    ray.origin = Vec3(0.2f, 0.2f, 1.0f);
+    ray.direction = Vec3(0, 0, -1);
+    const auto hit = scene.intersect(ray);
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->geometric_normal, Vec3(0, 0, 1));
+    EXPECT_EQ(hit->shading_normal, Vec3(0, 0, 1));
+}
+
 TEST(SurfaceScene, MeshWithoutNormalsIsFlatAndFollowsWinding) {
     MeshShape mesh;
     mesh.mesh.positions = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0)};
