@@ -48,6 +48,15 @@ float min_scattering_extinction(const MediumInterval& interval) {
     return sigma;
 }
 
+/// Largest transmittance among scattering channels: the light they can still carry.
+float max_scattering_transmittance(const MediumInterval& interval, const Rgb& transmittance) {
+    float t = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        if (interval.sigma_s[c] > 0.0f) t = std::max(t, transmittance[c]);
+    }
+    return t;
+}
+
 }  // namespace
 
 VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& lights,
@@ -63,15 +72,19 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
     for (const MediumInterval& interval : intervals) {
         const float length = interval.t1 - interval.t0;
         if (in_scatter && interval.scattering_mask != 0) {
-            // An endless stretch (unbounded fog seen toward the sky) is marched until the
-            // transmittance of every scattering channel is below kTailTransmittance; the light
-            // left out is at most that fraction of the stretch's single-scattered radiance.
+            // Marching stops once the transmittance of every scattering channel, from the ray
+            // origin, is below kTailTransmittance (an endless stretch seen toward the sky, or a
+            // long optically thick one): the light left out is at most that fraction of the
+            // single-scattered radiance a homogeneous continuation would add.
+            const float sigma_min = min_scattering_extinction(interval);
+            const float t_start = max_scattering_transmittance(interval, transmittance);
             float march_length = length;
-            if (!(length < kInfinity)) {
-                const float sigma_min = min_scattering_extinction(interval);
-                march_length = -std::log(kTailTransmittance) / sigma_min;
+            if (sigma_min > 0.0f && t_start > 0.0f) {
+                march_length = std::min(length, std::log(t_start / kTailTransmittance) / sigma_min);
             }
+            if (!(march_length > 0.0f) || !(march_length < kInfinity)) march_length = 0.0f;
             const auto n_steps = static_cast<int>(std::ceil(march_length / settings.step_m));
+            // n_steps is 0 when nothing is left to see through.
             const float dt = march_length / static_cast<float>(std::max(n_steps, 1));
             // Distances within a step are drawn from exp(-sigma_bar s) truncated to [0, dt].
             const float sigma_bar =

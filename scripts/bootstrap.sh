@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine (run as root from anywhere):
+#   scripts/bootstrap.sh render  install packages, build Release, render the default scene
+#                                to out/default.exr and out/default.png
+#   scripts/bootstrap.sh test    install packages, build Release with -Werror and run every
+#                                test, then build with ASan+UBSan and run the unit tests
+# Package installation is idempotent: only missing packages are installed.
+set -euo pipefail
+
+mode="${1:-}"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+jobs="${KASUMI_JOBS:-$(nproc)}"
+
+packages=(
+  build-essential cmake pkg-config ca-certificates
+  libopenvdb-dev libboost-dev libboost-iostreams-dev
+  libembree-dev libtbb-dev libopenexr-dev libopencolorio-dev opencolorio-tools
+  libglm-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
+  libgtest-dev libgmock-dev libbenchmark-dev clang-format
+)
+
+install_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$p")
+    fi
+  done
+  if [ "${#missing[@]}" -eq 0 ]; then
+    echo "bootstrap: all ${#packages[@]} packages present"
+    return
+  fi
+  echo "bootstrap: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+build() {  # build PRESET
+  cmake --preset "$1" >/dev/null
+  cmake --build --preset "$1" -j "$jobs"
+}
+
+case "$mode" in
+  render)
+    install_packages
+    build release
+    mkdir -p out
+    ./build/release/apps/kasumi render data/scenes/fog_street.json \
+      -o out/default.exr --preview out/default.png
+    ;;
+  test)
+    install_packages
+    build ci
+    ctest --preset ci -j "$jobs"
+    build asan
+    ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      ctest --preset asan -j "$jobs"
+    ;;
+  *)
+    echo "usage: scripts/bootstrap.sh render|test" >&2
+    exit 2
+    ;;
+esac
