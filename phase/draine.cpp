@@ -64,8 +64,11 @@ double draine_value(double g, double alpha, double mu) {
 double sample_draine_cosine(double g, double alpha, double u) {
     if (std::abs(g) < kTinyG)
         return sample_quadratic_cosine(alpha, u);
-    // p(mu; -g) = p(-mu; g): sample the forward-peaked case and mirror.
+    // p(mu; -g) = p(-mu; g): sample the forward-peaked case with 1 - u and mirror, which keeps
+    // the map from u to mu increasing (the inverse CDF of p(mu; g)).
     const double sign = g < 0.0 ? -1.0 : 1.0;
+    if (g < 0.0)
+        u = 1.0 - u;
     g = std::abs(g);
     const double a0 = 1.0 + g * g;
     const double w0 = 1.0 / (1.0 + g), w1 = 1.0 / (1.0 - g);

@@ -1,0 +1,226 @@
+#include "phase/phase_validation.h"
+
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "phase/phase_quadrature.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace kasumi {
+
+std::optional<double> closed_form_mean_cosine(const PhaseFunction& p) {
+    if (std::holds_alternative<Tabulated>(p) || std::holds_alternative<Mie>(p))
+        return std::nullopt;
+    return mean_cosine(p);
+}
+
+double integrate_phase(const PhaseFunction& p, double (*weight)(double)) {
+    const auto f = [&](double mu) {
+        return weight(mu) * static_cast<double>(eval(p, static_cast<float>(mu)));
+    };
+    // Float evaluation carries ~6e-8 relative noise, so the recursion may reach its depth limit
+    // on noise; 1e-9 per panel keeps the total error well below the 1e-6 asked of the checks.
+    return 2.0 * kPiD * integrate_mu(f, -1.0, 1.0, 1e-11, 1e-9);
+}
+
+namespace {
+
+double one(double) {
+    return 1.0;
+}
+double identity(double mu) {
+    return mu;
+}
+
+/// Cell edges in cos θ: uniform steps plus geometric ones toward both poles, so forward and
+/// backward peaks are split into several cells. The finest edge, 1 - |mu| = 2e-5, stays well
+/// above the rounding of mu recomputed from float directions (~1e-7), which would otherwise
+/// move samples across edges on the flanks of narrow peaks.
+std::vector<double> cos_edges() {
+    std::vector<double> edges = {-1.0, 1.0};
+    for (int i = 1; i < 40; ++i)
+        edges.push_back(-1.0 + 2.0 * i / 40.0);
+    for (int k = 2; k <= 20; ++k) {
+        const double d = 2.0 * std::pow(10.0, -0.25 * k);
+        edges.push_back(-1.0 + d);
+        edges.push_back(1.0 - d);
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end(),
+                            [](double a, double b) { return std::abs(a - b) < 1e-12; }),
+                edges.end());
+    return edges;
+}
+
+}  // namespace
+
+ChiSquareResult chi_square_test(const PhaseFunction& p, const Vec3& wo,
+                                const ValidationOptions& options) {
+    const std::vector<double> edges = cos_edges();
+    const int n_cos = static_cast<int>(edges.size()) - 1;
+    const int n_phi = 8;
+    const int n_cells = n_cos * n_phi;
+    std::vector<double> observed(static_cast<size_t>(n_cells), 0.0);
+    const Frame frame(wo);
+    Pcg32 rng(options.seed, 0x9e3779b9u);
+    for (int i = 0; i < options.samples; ++i) {
+        const PhaseSample s = sample(p, wo, rng.next_vec2());
+        if (!(s.pdf > 0.0f) || !is_finite(s.wi))
+            continue;  // counts as missing mass: the cells then under-fill and the test fails
+        // The scattered light propagates along -wi; θ is its angle to wo (mu = cos θ).
+        const Vec3 local = frame.to_local(-s.wi);
+        const double mu = std::clamp(static_cast<double>(local.z), -1.0, 1.0);
+        double phi = std::atan2(static_cast<double>(local.y), static_cast<double>(local.x));
+        if (phi < 0.0)
+            phi += 2.0 * kPiD;
+        const int ci = std::clamp(
+            static_cast<int>(std::upper_bound(edges.begin(), edges.end(), mu) - edges.begin()) - 1,
+            0, n_cos - 1);
+        const int pi = std::clamp(static_cast<int>(phi / (2.0 * kPiD) * n_phi), 0, n_phi - 1);
+        observed[static_cast<size_t>(ci * n_phi + pi)] += 1.0;
+    }
+    std::vector<double> expected(static_cast<size_t>(n_cells));
+    std::ostringstream table;
+    table << "cos_lo,cos_hi,observed,expected\n";
+    for (int ci = 0; ci < n_cos; ++ci) {
+        const auto f = [&](double mu) {
+            return static_cast<double>(pdf(p, static_cast<float>(mu)));
+        };
+        // pdf per steradian integrated over the cell: Δφ ∫ pdf dmu, Δφ = 2π / n_phi.
+        const double mass = 2.0 * kPiD / n_phi *
+                            integrate_mu(f, edges[static_cast<size_t>(ci)],
+                                         edges[static_cast<size_t>(ci) + 1], 1e-12, 1e-6);
+        double obs_row = 0.0;
+        for (int pi = 0; pi < n_phi; ++pi) {
+            expected[static_cast<size_t>(ci * n_phi + pi)] = mass * options.samples;
+            obs_row += observed[static_cast<size_t>(ci * n_phi + pi)];
+        }
+        table << edges[static_cast<size_t>(ci)] << ',' << edges[static_cast<size_t>(ci) + 1] << ','
+              << obs_row << ',' << mass * n_phi * options.samples << '\n';
+    }
+    ChiSquareResult result;
+    double pooled_obs = 0.0, pooled_exp = 0.0;
+    for (int c = 0; c < n_cells; ++c) {
+        const double e = expected[static_cast<size_t>(c)], o = observed[static_cast<size_t>(c)];
+        if (e < 5.0) {
+            pooled_obs += o;
+            pooled_exp += e;
+            ++result.pooled_cells;
+            continue;
+        }
+        result.statistic += (o - e) * (o - e) / e;
+        ++result.cells;
+    }
+    if (pooled_exp >= 5.0) {
+        result.statistic += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
+        ++result.cells;
+    } else if (pooled_obs > pooled_exp + 10.0) {
+        // Too few expected samples for a χ² term, yet many arrived: a sampler putting mass
+        // where the pdf has (almost) none. Fail outright.
+        result.statistic = INFINITY;
+    }
+    result.dof = std::max(1, result.cells - 1);
+    result.p_value = upper_incomplete_gamma_q(0.5 * result.dof, 0.5 * result.statistic);
+    // Šidák: n independent tests each at 1 - (1 - α)^{1/n} fail together with probability α.
+    result.threshold =
+        1.0 - std::pow(1.0 - options.significance, 1.0 / std::max(1, options.n_tests));
+    result.passed = result.p_value > result.threshold;
+    result.table = table.str();
+    return result;
+}
+
+std::vector<PhaseCheck> validate_phase(const PhaseFunction& p, const ValidationOptions& options) {
+    std::vector<PhaseCheck> checks;
+    {
+        PhaseCheck c{"normalisation",
+                     false,
+                     integrate_phase(p, one),
+                     1.0,
+                     options.normalisation_tolerance,
+                     "2π ∫ p(mu) dmu, adaptive Simpson"};
+        c.passed = std::abs(c.value - c.expected) <= c.tolerance;
+        checks.push_back(c);
+    }
+    {
+        const double measured = integrate_phase(p, identity);
+        const std::optional<double> closed = closed_form_mean_cosine(p);
+        PhaseCheck c{
+            "mean_cosine",
+            false,
+            measured,
+            closed ? *closed : mean_cosine(p),
+            std::max(1e-5, options.normalisation_tolerance),
+            closed ? "quadrature vs closed form" : "quadrature vs the table's exact value"};
+        c.passed = std::abs(c.value - c.expected) <= c.tolerance;
+        checks.push_back(c);
+    }
+    Pcg32 rng(options.seed, 17u);
+    {
+        // p(wo, wi) must equal p(wi, wo) (and be unchanged when both directions flip).
+        double worst = 0.0;
+        for (int i = 0; i < 10000; ++i) {
+            const Vec3 a = sample_uniform_sphere(rng.next_vec2());
+            const Vec3 b = sample_uniform_sphere(rng.next_vec2());
+            const double ab = eval(p, a, b), ba = eval(p, b, a), flipped = eval(p, -b, -a);
+            const double scale = std::max(1e-30, std::abs(ab));
+            worst = std::max({worst, std::abs(ab - ba) / scale, std::abs(ab - flipped) / scale});
+        }
+        PhaseCheck c{"reciprocity", worst <= 1e-6,
+                     worst,         0.0,
+                     1e-6,          "max relative |p(wo,wi) - p(wi,wo)| over 10^4 random pairs"};
+        checks.push_back(c);
+    }
+    {
+        // Sampled value and pdf agree with each other exactly and with eval/pdf at the mu
+        // recomputed from the returned direction, up to the float rounding of that mu (which
+        // matters only on the steepest flanks of very narrow peaks: a 0.1 % allowance).
+        const Vec3 wo = glm::normalize(Vec3(0.3f, -0.5f, 0.81f));
+        const int n = std::min(options.samples, 200000);
+        int bad = 0, invalid = 0;
+        double mean = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const PhaseSample s = sample(p, wo, rng.next_vec2());
+            if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf) || !is_finite(s.wi) ||
+                std::abs(glm::length(s.wi) - 1.0f) > 1e-4f || s.value != s.pdf) {
+                ++invalid;
+                continue;
+            }
+            const float mu = scattering_cosine(wo, s.wi);
+            mean += mu;
+            // The pdf anywhere within the rounding error of mu (2e-7) is acceptable, plus 2 %.
+            float lo = pdf(p, mu), hi = lo;
+            for (const float d : {-2e-7f, 2e-7f}) {
+                const float v = pdf(p, std::clamp(mu + d, -1.0f, 1.0f));
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+            if (s.pdf < 0.98f * lo || s.pdf > 1.02f * hi || eval(p, mu) != pdf(p, mu))
+                ++bad;
+        }
+        PhaseCheck c{"sample_pdf_eval",
+                     invalid == 0 && bad <= n / 1000,
+                     double(bad + invalid),
+                     0.0,
+                     n / 1000.0,
+                     std::to_string(invalid) + " invalid samples, " + std::to_string(bad) +
+                         " disagreeing by > 2 % of " + std::to_string(n)};
+        checks.push_back(c);
+    }
+    {
+        const ChiSquareResult chi =
+            chi_square_test(p, glm::normalize(Vec3(0.2f, 0.7f, -0.4f)), options);
+        PhaseCheck c{"chi_square",
+                     chi.passed,
+                     chi.p_value,
+                     1.0,
+                     chi.threshold,
+                     "chi2 = " + std::to_string(chi.statistic) + ", dof = " +
+                         std::to_string(chi.dof) + ", " + std::to_string(chi.pooled_cells) +
+                         " cells pooled; passes when p-value > " + std::to_string(chi.threshold)};
+        checks.push_back(c);
+    }
+    return checks;
+}
+
+}  // namespace kasumi

@@ -1,0 +1,83 @@
+/// The tabulated Mie phase function: normalisation, agreement with the exact series, the
+/// resolved forward peak, and polydisperse averaging.
+#include "phase/mie.h"
+
+#include <gtest/gtest.h>
+
+namespace kasumi {
+namespace {
+
+TEST(MiePhase, TableFollowsTheSeriesAndItsMeanCosine) {
+    for (const double x : {0.1, 5.2128, 60.0}) {
+        const Mie mie = make_mie(x, Complex(1.55, 0.0));
+        const LorenzMie sphere(x, Complex(1.55, 0.0));
+        const MieEfficiencies q = sphere.efficiencies();
+        // p = S11 / (π x² Qsca) per steradian (BH eq. 3.13 with Csca = π r² Qsca).
+        for (const double theta_deg : {0.0, 20.0, 90.0, 180.0}) {
+            const double mu = std::cos(theta_deg * kPiD / 180.0);
+            const double exact = sphere.s11(mu) / (kPiD * x * x * q.qsca);
+            EXPECT_NEAR(mie.table->eval(mu), exact, 2e-4 * exact) << x << " " << theta_deg;
+        }
+        EXPECT_NEAR(mie.table->mean_cosine(), q.g, 2e-4) << x;
+    }
+}
+
+TEST(MiePhase, ResolvesTheForwardPeakOfFogDroplets) {
+    // A 10 µm droplet at 550 nm: x ≈ 114, diffraction peak of angular width ~1/x ≈ 0.5°.
+    const Mie mie = make_mie_sphere(10.0, 550.0, Complex(1.333, 0.0), 1.0);
+    const LorenzMie sphere(mie.summary->x, Complex(1.333, 0.0));
+    const double norm = kPiD * mie.summary->x * mie.summary->x * mie.summary->efficiencies.qsca;
+    int nodes_in_peak = 0;
+    for (const double mu : mie.table->mu())
+        nodes_in_peak += mu > std::cos(4.0 / mie.summary->x) ? 1 : 0;
+    EXPECT_GT(nodes_in_peak, 50);
+    for (const double theta :
+         {0.0, 0.5 / mie.summary->x, 1.0 / mie.summary->x, 2.0 / mie.summary->x}) {
+        const double exact = sphere.s11(std::cos(theta)) / norm;
+        EXPECT_NEAR(mie.table->eval(std::cos(theta)), exact, 1e-3 * exact) << theta;
+    }
+}
+
+TEST(MiePhase, NarrowDistributionApproachesTheSingleSphere) {
+    const double radius = 0.4, wavelength = 550.0;
+    const Complex m(1.5, 0.01);
+    const Mie single = make_mie_sphere(radius, wavelength, m, 1.0);
+    const Mie poly = make_mie_polydisperse(LogNormalSizes{radius, 0.002}, wavelength, m, 1.0, 64);
+    EXPECT_NEAR(poly.summary->c_sca_um2, single.summary->c_sca_um2,
+                1e-3 * single.summary->c_sca_um2);
+    EXPECT_NEAR(poly.summary->c_ext_um2, single.summary->c_ext_um2,
+                1e-3 * single.summary->c_ext_um2);
+    EXPECT_NEAR(poly.summary->g, single.summary->g, 1e-3);
+    EXPECT_NEAR(poly.table->eval(0.3), single.table->eval(0.3), 2e-3 * single.table->eval(0.3));
+}
+
+TEST(MiePhase, ModifiedGammaCloudIsForwardScatteringAndNormalised) {
+    // Deirmendjian's cloud C.1 (alpha = 6, gamma = 1, r_c = 4 µm) at 700 nm.
+    const Mie cloud = make_mie_polydisperse(ModifiedGammaSizes{4.0, 6.0, 1.0}, 700.0,
+                                            Complex(1.33, 0.0), 1.0, 300);
+    EXPECT_GT(cloud.summary->g, 0.8);
+    EXPECT_LT(cloud.summary->g, 0.9);
+    EXPECT_NEAR(cloud.table->mean_cosine(), cloud.summary->g, 2e-3);
+    EXPECT_GT(cloud.summary->c_sca_um2, 0.0);
+    // Non-absorbing: extinction equals scattering.
+    EXPECT_NEAR(cloud.summary->c_ext_um2, cloud.summary->c_sca_um2,
+                1e-9 * cloud.summary->c_sca_um2);
+}
+
+TEST(SizeDistribution, NormalisedDensities) {
+    for (const SizeDistribution& d : {SizeDistribution{LogNormalSizes{2.0, 0.4}},
+                                      SizeDistribution{ModifiedGammaSizes{4.0, 6.0, 1.0}},
+                                      SizeDistribution{ModifiedGammaSizes{1.0, 2.0, 0.5}}}) {
+        double sum = 0.0;
+        const int n = 200000;
+        const double lo = std::log(1e-4), hi = std::log(1e3);
+        for (int i = 0; i < n; ++i) {
+            const double r = std::exp(lo + (hi - lo) * (i + 0.5) / n);
+            sum += number_density(d, r) * r * (hi - lo) / n;
+        }
+        EXPECT_NEAR(sum, 1.0, 1e-6);
+    }
+}
+
+}  // namespace
+}  // namespace kasumi
