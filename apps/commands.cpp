@@ -104,15 +104,15 @@ void add_render_command(CLI::App& root) {
             std::vector<Override> overrides;
             for (const std::string& s : scene_options.sets)
                 overrides.push_back(parse_override(s));
-            Json root = read_json_file(scene_options.scene_path);
-            if (root.is_object()) {
+            Json doc = read_json_file(scene_options.scene_path);
+            if (doc.is_object()) {
                 for (const char* key : {"film", "render"}) {
-                    if (!root.contains(key))
-                        root[key] = Json::object();
+                    if (!doc.contains(key))
+                        doc[key] = Json::object();
                 }
             }
-            apply_overrides(root, overrides, scene_options.scene_path);
-            return parse_scene(root, scene_options.scene_path);
+            apply_overrides(doc, overrides, scene_options.scene_path);
+            return parse_scene(doc, scene_options.scene_path);
         }();
 
         OutputPaths paths;

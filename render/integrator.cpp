@@ -40,7 +40,7 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
         if (cos_theta <= 0.0f || glm::dot(ng, in.wi) <= 0.0f)
             continue;
         const bool to_infinity = in.distance >= kInfinity;
-        const Vec3 origin = offset_ray_origin(hit.position, ng, in.wi);
+        const Vec3 origin = offset_ray_origin(hit, in.wi);
         Rgb t_media(1.0f);
         if (scene.plan().volume) {
             t_media = scene.media().transmittance(

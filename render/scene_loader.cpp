@@ -73,6 +73,16 @@ RenderSettings parse_render(const JsonNode& node) {
         JsonObjectReader volume(*v);
         if (auto step = volume.optional("step_m"))
             render.volume.step_m = step->positive();
+        if (auto sampling = volume.optional("light_sampling")) {
+            const std::string name = sampling->as_string();
+            if (name == "all") {
+                render.volume.light_sampling = LightSampling::All;
+            } else if (name == "one") {
+                render.volume.light_sampling = LightSampling::One;
+            } else {
+                sampling->fail("expected \"all\" or \"one\"");
+            }
+        }
         volume.finish();
     }
     if (auto v = reader.optional("preview")) {

@@ -8,34 +8,80 @@ namespace {
 
 constexpr float kTailTransmittance = 1e-6f;
 
-/// Light scattered toward -ray.direction at x, per unit length: sum over lights of
-/// sigma_s p(mu) E T_light V.
+/// Unshadowed light from one light scattered toward wo at x, per unit length:
+/// sigma_s p(mu) E T_light, with the incident light a shadow ray must test.
+struct LightContribution {
+    Rgb value{0.0f};
+    IncidentLight incident;
+};
+
+LightContribution unshadowed(const MediumSet& media, const MediumInterval& interval,
+                             const Light& light, const Vec3& x, const Vec3& wo) {
+    LightContribution c;
+    c.incident = incident_light(light, x);
+    if (is_black(c.incident.irradiance))
+        return c;
+    const Rgb scatter = media.scattering(interval, scattering_cosine(wo, c.incident.wi));
+    if (is_black(scatter))
+        return c;
+    const bool to_infinity = c.incident.distance >= kInfinity;
+    const Ray shadow{x, c.incident.wi, 0.0f, to_infinity ? kInfinity : c.incident.distance};
+    c.value = scatter * c.incident.irradiance * media.transmittance(shadow);
+    return c;
+}
+
+bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight& in,
+             VolumeCounters& counters) {
+    if (occlusion == nullptr)
+        return false;
+    ++counters.shadow_rays;
+    return in.distance >= kInfinity ? occlusion->occluded_direction(x, in.wi)
+                                    : occlusion->occluded(x, in.light_position);
+}
+
+/// Light scattered toward wo at x per unit length, sum over lights of sigma_s p E T_light V:
+/// exactly with a shadow ray per light, or by picking one light with probability proportional
+/// to its unshadowed luminance (unbiased; only the visibility is then estimated).
 Rgb source(const MediumSet& media, const MediumInterval& interval, const std::vector<Light>& lights,
-           const OcclusionQuery* occlusion, const Vec3& x, const Vec3& wo,
-           VolumeCounters& counters) {
-    Rgb total(0.0f);
-    for (const Light& light : lights) {
-        const IncidentLight in = incident_light(light, x);
-        if (is_black(in.irradiance))
-            continue;
-        const Rgb scatter = media.scattering(interval, scattering_cosine(wo, in.wi));
-        if (is_black(scatter))
-            continue;
-        const bool to_infinity = in.distance >= kInfinity;
-        Ray shadow{x, in.wi, 0.0f, to_infinity ? kInfinity : in.distance};
-        const Rgb t_light = media.transmittance(shadow);
-        if (is_black(t_light))
-            continue;
-        if (occlusion != nullptr) {
-            ++counters.shadow_rays;
-            const bool blocked = to_infinity ? occlusion->occluded_direction(x, in.wi)
-                                             : occlusion->occluded(x, in.light_position);
-            if (blocked)
+           const OcclusionQuery* occlusion, const Vec3& x, const Vec3& wo, LightSampling sampling,
+           float u, VolumeCounters& counters) {
+    constexpr size_t kMaxStackLights = 16;
+    if (sampling == LightSampling::All || lights.size() == 1 || lights.size() > kMaxStackLights) {
+        Rgb total(0.0f);
+        for (const Light& light : lights) {
+            const LightContribution c = unshadowed(media, interval, light, x, wo);
+            if (is_black(c.value) || blocked(occlusion, x, c.incident, counters))
                 continue;
+            total += c.value;
         }
-        total += scatter * in.irradiance * t_light;
+        return total;
     }
-    return total;
+    LightContribution contributions[kMaxStackLights];
+    float weights[kMaxStackLights];
+    float total_weight = 0.0f;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        contributions[i] = unshadowed(media, interval, lights[i], x, wo);
+        weights[i] = std::max(luminance(contributions[i].value), 0.0f);
+        total_weight += weights[i];
+    }
+    if (!(total_weight > 0.0f))
+        return Rgb(0.0f);
+    // Pick light i with probability weights[i] / total_weight by walking the CDF with u.
+    // Rounding can leave target past the last bin: fall back to the last light with weight.
+    float target = u * total_weight;
+    size_t chosen = 0;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (weights[i] == 0.0f)
+            continue;
+        chosen = i;
+        if (target < weights[i])
+            break;
+        target -= weights[i];
+    }
+    const LightContribution& c = contributions[chosen];
+    if (blocked(occlusion, x, c.incident, counters))
+        return Rgb(0.0f);
+    return c.value * (total_weight / weights[chosen]);
 }
 
 /// Smallest extinction among channels that scatter (those channels carry in-scattered light).
@@ -52,7 +98,8 @@ float min_scattering_extinction(const MediumInterval& interval) {
 float max_scattering_transmittance(const MediumInterval& interval, const Rgb& transmittance) {
     float t = 0.0f;
     for (int c = 0; c < 3; ++c) {
-        if (interval.sigma_s[c] > 0.0f) t = std::max(t, transmittance[c]);
+        if (interval.sigma_s[c] > 0.0f)
+            t = std::max(t, transmittance[c]);
     }
     return t;
 }
@@ -82,7 +129,8 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
             if (sigma_min > 0.0f && t_start > 0.0f) {
                 march_length = std::min(length, std::log(t_start / kTailTransmittance) / sigma_min);
             }
-            if (!(march_length > 0.0f) || !(march_length < kInfinity)) march_length = 0.0f;
+            if (!(march_length > 0.0f) || !(march_length < kInfinity))
+                march_length = 0.0f;
             const auto n_steps = static_cast<int>(std::ceil(march_length / settings.step_m));
             // n_steps is 0 when nothing is left to see through.
             const float dt = march_length / static_cast<float>(std::max(n_steps, 1));
@@ -102,7 +150,8 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
             const Rgb t_within = exp_neg(interval.sigma_t * s);
             for (int i = 0; i < n_steps; ++i) {
                 const float t = interval.t0 + static_cast<float>(i) * dt + s;
-                const Rgb src = source(media, interval, lights, occlusion, ray.at(t), wo, counters);
+                const Rgb src = source(media, interval, lights, occlusion, ray.at(t), wo,
+                                       settings.light_sampling, rng.next_float(), counters);
                 ++counters.steps;
                 result.radiance += t_step_start * t_within * src / pdf;
                 t_step_start *= exp_neg(interval.sigma_t * dt);

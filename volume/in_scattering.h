@@ -11,8 +11,15 @@
 
 namespace kasumi {
 
+/// How each march sample gathers light.
+enum class LightSampling {
+    All,  ///< a shadow ray to every light
+    One,  ///< one light, chosen in proportion to its unshadowed contribution; one shadow ray
+};
+
 struct VolumeSettings {
     float step_m = 0.25f;  ///< longest march step, metres
+    LightSampling light_sampling = LightSampling::One;
 };
 
 struct VolumeResult {

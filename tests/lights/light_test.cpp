@@ -25,7 +25,8 @@ TEST(PointLight, InverseSquareLaw) {
 
 TEST(PointLight, FluxIsFourPiIntensity) {
     const Light light = parse(R"({"type": "point", "position": [0, 0, 0], "flux_lm": 1000})");
-    EXPECT_NEAR(luminance(std::get<PointLight>(light.emitter).intensity), 1000.0f / (4.0f * kPi), 1e-3f);
+    EXPECT_NEAR(luminance(std::get<PointLight>(light.emitter).intensity), 1000.0f / (4.0f * kPi),
+                1e-3f);
     EXPECT_NEAR(luminous_flux_lm(light), 1000.0f, 1e-2f);
 }
 
@@ -38,7 +39,8 @@ TEST(Light, ColourKeepsThePhotometricAmount) {
 }
 
 TEST(DirectionalLight, WiIsOppositeTheTravelDirection) {
-    const Light light = parse(R"({"type": "directional", "direction": [0, -2, 0], "illuminance_lux": 3})");
+    const Light light =
+        parse(R"({"type": "directional", "direction": [0, -2, 0], "illuminance_lux": 3})");
     const IncidentLight in = incident_light(light, Vec3(5.0f));
     EXPECT_EQ(in.wi, Vec3(0, 1, 0));
     EXPECT_GE(in.distance, kInfinity);
@@ -59,18 +61,21 @@ TEST(LightJson, BadInputIsLocated) {
     EXPECT_NE(error_of(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": -1})")
                   .find("/lights/0/intensity_cd"),
               std::string::npos);
-    EXPECT_NE(error_of(R"({"type": "point", "position": [0, 0, 0]})").find("intensity_cd or flux_lm"),
-              std::string::npos);
-    EXPECT_NE(error_of(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "flux_lm": 2})")
-                  .find("not both"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of(R"({"type": "point", "position": [0, 0, 0]})").find("intensity_cd or flux_lm"),
+        std::string::npos);
+    EXPECT_NE(
+        error_of(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "flux_lm": 2})")
+            .find("not both"),
+        std::string::npos);
     EXPECT_NE(error_of(R"({"type": "directional", "direction": [0, 0, 0], "illuminance_lux": 1})")
                   .find("/lights/0/direction"),
               std::string::npos);
     EXPECT_NE(error_of(R"({"type": "laser"})").find("unknown light type"), std::string::npos);
-    EXPECT_NE(error_of(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "colour": 1})")
-                  .find("unknown key \"colour\""),
-              std::string::npos);
+    EXPECT_NE(
+        error_of(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "colour": 1})")
+            .find("unknown key \"colour\""),
+        std::string::npos);
 }
 
 }  // namespace

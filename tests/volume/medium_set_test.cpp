@@ -10,11 +10,13 @@ Medium box_medium(Vec3 lo, Vec3 hi, Rgb sigma_a, Rgb sigma_s) {
 }
 
 TEST(MediumSet, BeerLambertThroughABox) {
-    const MediumSet media({box_medium(Vec3(0.0f), Vec3(1.0f), Rgb(0.5f, 1.0f, 2.0f), Rgb(1.5f, 1.0f, 0.0f))});
+    const MediumSet media(
+        {box_medium(Vec3(0.0f), Vec3(1.0f), Rgb(0.5f, 1.0f, 2.0f), Rgb(1.5f, 1.0f, 0.0f))});
     // Along x through the middle: path length 1, sigma_t = (2, 2, 2).
     const Ray axis{Vec3(-3.0f, 0.5f, 0.5f), Vec3(1, 0, 0), 0.0f, kInfinity};
     const Rgb t = media.transmittance(axis);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], std::exp(-2.0f), 1e-6f);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(t[c], std::exp(-2.0f), 1e-6f);
     // Along the main diagonal: path length sqrt(3).
     const Ray diagonal{Vec3(-1.0f), glm::normalize(Vec3(1.0f)), 0.0f, kInfinity};
     EXPECT_NEAR(media.transmittance(diagonal).r, std::exp(-2.0f * std::sqrt(3.0f)), 1e-5f);
@@ -41,7 +43,8 @@ TEST(MediumSet, OverlappingMediaAddCoefficients) {
 }
 
 TEST(MediumSet, UnboundedMediumAlongAnEndlessRayIsOpaque) {
-    const MediumSet media({Medium{"fog", HomogeneousMedium{std::nullopt, Rgb(0.0f, 0.0f, 0.01f), Rgb(0.0f), Isotropic{}}}});
+    const MediumSet media({Medium{
+        "fog", HomogeneousMedium{std::nullopt, Rgb(0.0f, 0.0f, 0.01f), Rgb(0.0f), Isotropic{}}}});
     const Rgb t = media.transmittance(Ray{Vec3(0.0f), Vec3(0, 0, 1), 0.0f, kInfinity});
     EXPECT_EQ(t.r, 1.0f);  // a clear channel stays clear (no 0 * inf = NaN)
     EXPECT_EQ(t.b, 0.0f);
