@@ -2,6 +2,7 @@
 /// exit codes (0 ok, 1 runtime, 2 usage, 3 invalid input, 4 cannot write, 5 validation failed,
 /// 130/143 interrupted).
 #include "apps/commands.h"
+#include "apps/phase_command.h"
 #include "core/error.h"
 
 #include <CLI/CLI.hpp>
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
     kasumi::add_plan_command(app);
     kasumi::add_check_command(app);
     kasumi::add_probe_command(app);
+    kasumi::add_phase_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -34,11 +34,15 @@ struct Bounds3 {
             const float inv = 1.0f / ray.direction[axis];
             float near = (min[axis] - ray.origin[axis]) * inv;
             float far = (max[axis] - ray.origin[axis]) * inv;
-            if (near > far) std::swap(near, far);
+            if (near > far)
+                std::swap(near, far);
             // NaN (0 * inf on a slab face) compares false and leaves t0/t1 unchanged.
-            if (near > t0) t0 = near;
-            if (far < t1) t1 = far;
-            if (t0 > t1) return std::nullopt;
+            if (near > t0)
+                t0 = near;
+            if (far < t1)
+                t1 = far;
+            if (t0 > t1)
+                return std::nullopt;
         }
         return std::make_pair(t0, t1);
     }

@@ -18,7 +18,8 @@ struct Image {
     int width = 0;
     int height = 0;
     std::vector<ImageChannel> channels;
-    std::vector<std::pair<std::string, std::string>> metadata;  ///< written as EXR string attributes
+    std::vector<std::pair<std::string, std::string>>
+        metadata;  ///< written as EXR string attributes
     Chromaticities chromaticities;
 
     Image() = default;
@@ -26,24 +27,28 @@ struct Image {
 
     /// Adds a zero-filled channel and returns it.
     ImageChannel& add_channel(const std::string& name) {
-        channels.push_back(ImageChannel{name, std::vector<float>(static_cast<size_t>(width) * height, 0.0f)});
+        channels.push_back(
+            ImageChannel{name, std::vector<float>(static_cast<size_t>(width) * height, 0.0f)});
         return channels.back();
     }
     const ImageChannel* find(const std::string& name) const {
         for (const auto& c : channels) {
-            if (c.name == name) return &c;
+            if (c.name == name)
+                return &c;
         }
         return nullptr;
     }
     ImageChannel* find(const std::string& name) {
         for (auto& c : channels) {
-            if (c.name == name) return &c;
+            if (c.name == name)
+                return &c;
         }
         return nullptr;
     }
     const std::string* find_metadata(const std::string& key) const {
         for (const auto& kv : metadata) {
-            if (kv.first == key) return &kv.second;
+            if (kv.first == key)
+                return &kv.second;
         }
         return nullptr;
     }

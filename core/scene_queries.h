@@ -9,7 +9,7 @@ namespace kasumi {
 
 /// Does any surface block the open segment from `from` to `to`?
 class OcclusionQuery {
-public:
+  public:
     virtual ~OcclusionQuery() = default;
     virtual bool occluded(const Vec3& from, const Vec3& to) const = 0;
     /// Same along a direction to infinity (directional lights).
@@ -19,10 +19,11 @@ public:
 /// Transmittance of all media along a segment (surfaces ignored). May be stochastic for
 /// heterogeneous media, so it takes the sample's generator.
 class TransmittanceQuery {
-public:
+  public:
     virtual ~TransmittanceQuery() = default;
     virtual Rgb transmittance(const Vec3& from, const Vec3& to, Pcg32& rng) const = 0;
-    virtual Rgb transmittance_direction(const Vec3& from, const Vec3& direction, Pcg32& rng) const = 0;
+    virtual Rgb transmittance_direction(const Vec3& from, const Vec3& direction,
+                                        Pcg32& rng) const = 0;
 };
 
 }  // namespace kasumi
