@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# End-to-end checks of the kasumi CLI contract: exit codes, located error messages, no output
+# on failure, JSON on stdout, and a small render that writes both files atomically.
+# usage: cli_test.sh KASUMI_BINARY SOURCE_DIR
+set -u
+kasumi="$1"
+src="$2"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect_exit CODE PATTERN -- ARGS...: runs kasumi, checks the exit code and that stderr
+# matches PATTERN (grep -E; empty pattern skips the check).
+expect_exit() {
+  local code="$1" pattern="$2"
+  shift 3
+  "$kasumi" "$@" >"$work/stdout" 2>"$work/stderr"
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    fail "kasumi $* exited $got, expected $code; stderr: $(head -c 400 "$work/stderr")"
+  elif [ -n "$pattern" ] && ! grep -qE -- "$pattern" "$work/stderr"; then
+    fail "kasumi $* stderr lacks /$pattern/: $(head -c 400 "$work/stderr")"
+  fi
+}
+
+cat >"$work/ok.json" <<'JSON'
+{
+  "camera": {"position": [0, 3, 0.001], "look_at": [0, 0, 0]},
+  "film": {"width": 24, "height": 16, "spp": 2},
+  "materials": {"white": {"type": "phong", "kd": 1}},
+  "shapes": [{"type": "quad", "material": "white", "vertices": [[-9, 0, 9], [9, 0, 9], [9, 0, -9], [-9, 0, -9]]}],
+  "lights": [{"type": "directional", "direction": [0, -1, 0], "illuminance_lux": 1000}],
+  "media": [{"type": "homogeneous", "bounds": [[-9, 0.5, -9], [9, 9, 9]], "sigma_a": 0, "sigma_s": 0.1,
+             "phase": {"model": "hg", "g": 0.3}}]
+}
+JSON
+
+# Bad input: exit 3, one line naming file and JSON path, no output file.
+echo '{"film": {"width": 8,}' >"$work/badjson.json"
+expect_exit 3 "badjson.json" -- render "$work/badjson.json" -o "$work/a.exr" -q
+expect_exit 3 "missing.json" -- render "$work/missing.json" -o "$work/a.exr" -q
+expect_exit 3 "ok.json: /media/0/phase/g = 1.*must be in \(-1, 1\)" -- render "$work/ok.json" --set /media/0/phase/g=1 -o "$work/a.exr" -q
+expect_exit 3 "ok.json: /media/0/sigma_s = -0.5.*>= 0" -- check "$work/ok.json" --set /media/0/sigma_s=-0.5
+expect_exit 3 "/film/spp.*unknown key|unknown key.*spq" -- check "$work/ok.json" --set /film/spq=3
+expect_exit 3 "/lights/0/illuminance_lux" -- plan "$work/ok.json" --set /lights/0/illuminance_lux='"bright"'
+[ -e "$work/a.exr" ] && fail "an output file was created for invalid input"
+[ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "error message is not one line: $(cat "$work/stderr")"
+
+# Usage errors: exit 2.
+expect_exit 2 "" -- render
+expect_exit 2 "" -- render "$work/ok.json" --no-such-flag
+expect_exit 2 "--res" -- render "$work/ok.json" --res 12by4
+expect_exit 2 "--set" -- check "$work/ok.json" --set film/width=3
+expect_exit 2 "--origin" -- probe radiance "$work/ok.json" --origin 1,2 --direction 0,-1,0
+
+# check and plan.
+expect_exit 0 "" -- check "$work/ok.json"
+grep -q "ok" "$work/stdout" || fail "check prints no ok"
+expect_exit 0 "" -- plan "$work/ok.json" --json
+grep -q '"volume-in-scattering"' "$work/stdout" || fail "plan --json lacks the in-scattering stage"
+expect_exit 0 "" -- plan "$work/ok.json" --set /media/0/sigma_s=0
+grep -q "skip  volume-in-scattering" "$work/stdout" || fail "plan does not skip in-scattering for sigma_s = 0"
+
+# probe radiance: JSON with the contract's keys; without fog, E/pi = 318.3 cd/m2 exactly.
+expect_exit 0 "" -- probe radiance "$work/ok.json" --origin 0,3,0 --direction 0,-1,0 --spp 4 --set /media/0/sigma_s=0
+for key in radiance stderr luminance_cd_m2; do
+  grep -q "\"$key\"" "$work/stdout" || fail "probe radiance lacks \"$key\""
+done
+grep -qE '"luminance_cd_m2": 318\.30' "$work/stdout" || fail "probe radiance is not E/pi: $(cat "$work/stdout")"
+
+# A render writes the EXR and the preview, and leaves no temporary file behind.
+expect_exit 0 "" -- render "$work/ok.json" -o "$work/out/r.exr" --preview "$work/out/r.png" -q
+[ -s "$work/out/r.exr" ] || fail "no EXR written"
+[ -s "$work/out/r.png" ] || fail "no PNG written"
+[ "$(ls -A "$work/out" | wc -l)" -eq 2 ] || fail "stray files beside the outputs: $(ls -A "$work/out")"
+head -c 4 "$work/out/r.exr" | od -An -tx1 | grep -q "76 2f 31 01" || fail "EXR magic number missing"
+
+# Unwritable output: exit 4.
+expect_exit 4 "" -- render "$work/ok.json" -o /proc/kasumi/r.exr -q
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures CLI check(s) failed"
+  exit 1
+fi
+echo "all CLI checks passed"
