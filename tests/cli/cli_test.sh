@@ -80,6 +80,18 @@ head -c 4 "$work/out/r.exr" | od -An -tx1 | grep -q "76 2f 31 01" || fail "EXR m
 # Unwritable output: exit 4.
 expect_exit 4 "" -- render "$work/ok.json" -o /proc/kasumi/r.exr -q
 
+# SIGINT during a render: exit 130, and the partial image is still written atomically.
+"$kasumi" render "$work/ok.json" --res 1600x1000 --spp 512 -o "$work/int/r.exr" --no-preview -q \
+  >/dev/null 2>"$work/stderr" &
+pid=$!
+sleep 1.5
+kill -INT "$pid"
+wait "$pid"
+got=$?
+[ "$got" -eq 130 ] || fail "interrupted render exited $got, expected 130: $(cat "$work/stderr")"
+[ -s "$work/int/r.exr" ] || fail "interrupted render wrote no partial image"
+[ "$(ls -A "$work/int" | wc -l)" -eq 1 ] || fail "stray files after interrupt: $(ls -A "$work/int")"
+
 if [ "$failures" -ne 0 ]; then
   echo "$failures CLI check(s) failed"
   exit 1
