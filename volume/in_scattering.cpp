@@ -1,5 +1,7 @@
 #include "volume/in_scattering.h"
 
+#include "volume/equiangular.h"
+
 #include <cmath>
 
 namespace kasumi {
@@ -42,14 +44,14 @@ bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight
 /// Light scattered toward wo at x per unit length, sum over lights of sigma_s p E T_light V:
 /// exactly with a shadow ray per light, or by picking one light with probability proportional
 /// to its unshadowed luminance (unbiased; only the visibility is then estimated).
-Rgb source(const MediumSet& media, const MediumInterval& interval, const std::vector<Light>& lights,
-           const OcclusionQuery* occlusion, const Vec3& x, const Vec3& wo, LightSampling sampling,
-           float u, VolumeCounters& counters) {
+Rgb source(const MediumSet& media, const MediumInterval& interval,
+           const std::vector<const Light*>& lights, const OcclusionQuery* occlusion, const Vec3& x,
+           const Vec3& wo, LightSampling sampling, float u, VolumeCounters& counters) {
     constexpr size_t kMaxStackLights = 16;
     if (sampling == LightSampling::All || lights.size() == 1 || lights.size() > kMaxStackLights) {
         Rgb total(0.0f);
-        for (const Light& light : lights) {
-            const LightContribution c = unshadowed(media, interval, light, x, wo);
+        for (const Light* light : lights) {
+            const LightContribution c = unshadowed(media, interval, *light, x, wo);
             if (is_black(c.value) || blocked(occlusion, x, c.incident, counters))
                 continue;
             total += c.value;
@@ -60,7 +62,7 @@ Rgb source(const MediumSet& media, const MediumInterval& interval, const std::ve
     float weights[kMaxStackLights];
     float total_weight = 0.0f;
     for (size_t i = 0; i < lights.size(); ++i) {
-        contributions[i] = unshadowed(media, interval, lights[i], x, wo);
+        contributions[i] = unshadowed(media, interval, *lights[i], x, wo);
         weights[i] = std::max(luminance(contributions[i].value), 0.0f);
         total_weight += weights[i];
     }
@@ -104,6 +106,53 @@ float max_scattering_transmittance(const MediumInterval& interval, const Rgb& tr
     return t;
 }
 
+/// Point lights' single scattering over [t0, t1] of a stretch by stratified equiangular
+/// sampling: `budget` samples shared among the lights in proportion to their unattenuated
+/// inverse-square integrals (at least one each), each estimate f(t) / pdf(t) weighted by the
+/// camera transmittance T(t) = t_start exp(-sigma_t (t - t0)).
+Rgb point_light_scattering(const MediumSet& media, const MediumInterval& interval,
+                           const std::vector<const Light*>& point_lights,
+                           const OcclusionQuery* occlusion, const Ray& ray, float t0, float t1,
+                           const Rgb& t_start, int budget, Pcg32& rng, VolumeCounters& counters) {
+    constexpr size_t kMaxLights = 64;
+    const size_t n = std::min(point_lights.size(), kMaxLights);
+    EquiangularSegment segments[kMaxLights];
+    float weights[kMaxLights];
+    float total = 0.0f;
+    for (size_t i = 0; i < n; ++i) {
+        const auto& light = std::get<PointLight>(point_lights[i]->emitter);
+        segments[i] = make_equiangular(ray.origin, ray.direction, light.position, t0, t1);
+        weights[i] = luminance(light.intensity) * segments[i].inverse_square_integral();
+        total += weights[i];
+    }
+    Rgb radiance(0.0f);
+    if (!(total > 0.0f))
+        return radiance;
+    const Vec3 wo = -ray.direction;
+    for (size_t i = 0; i < n; ++i) {
+        if (!(weights[i] > 0.0f))
+            continue;
+        const int samples = std::max(1, static_cast<int>(std::lround(budget * weights[i] / total)));
+        const float u = rng.next_float();
+        Rgb sum(0.0f);
+        for (int j = 0; j < samples; ++j) {
+            const float t =
+                segments[i].sample((static_cast<float>(j) + u) / static_cast<float>(samples));
+            const float pdf = segments[i].pdf(t);
+            if (!(pdf > 0.0f) || !std::isfinite(t))
+                continue;
+            ++counters.steps;
+            const Vec3 x = ray.at(t);
+            const LightContribution c = unshadowed(media, interval, *point_lights[i], x, wo);
+            if (is_black(c.value) || blocked(occlusion, x, c.incident, counters))
+                continue;
+            sum += exp_neg(interval.sigma_t * (t - t0)) * c.value / pdf;
+        }
+        radiance += t_start * sum / static_cast<float>(samples);
+    }
+    return radiance;
+}
+
 }  // namespace
 
 VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& lights,
@@ -115,6 +164,14 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
     media.intervals(ray, intervals);
     const Vec3 wo = -ray.direction;
     const float u = rng.next_float();
+    // Point lights are sampled equiangularly; the march gathers the other lights.
+    thread_local std::vector<const Light*> marched, point_lights;
+    marched.clear();
+    point_lights.clear();
+    for (const Light& light : lights) {
+        (std::holds_alternative<PointLight>(light.emitter) ? point_lights : marched)
+            .push_back(&light);
+    }
     Rgb transmittance(1.0f);  // from the ray origin to the start of the current stretch
     for (const MediumInterval& interval : intervals) {
         const float length = interval.t1 - interval.t0;
@@ -148,13 +205,18 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
             }
             Rgb t_step_start = transmittance;
             const Rgb t_within = exp_neg(interval.sigma_t * s);
-            for (int i = 0; i < n_steps; ++i) {
+            for (int i = 0; i < n_steps && !marched.empty(); ++i) {
                 const float t = interval.t0 + static_cast<float>(i) * dt + s;
-                const Rgb src = source(media, interval, lights, occlusion, ray.at(t), wo,
+                const Rgb src = source(media, interval, marched, occlusion, ray.at(t), wo,
                                        settings.light_sampling, rng.next_float(), counters);
                 ++counters.steps;
                 result.radiance += t_step_start * t_within * src / pdf;
                 t_step_start *= exp_neg(interval.sigma_t * dt);
+            }
+            if (!point_lights.empty() && n_steps > 0) {
+                result.radiance += point_light_scattering(
+                    media, interval, point_lights, occlusion, ray, interval.t0,
+                    interval.t0 + march_length, transmittance, n_steps, rng, counters);
             }
         }
         for (int c = 0; c < 3; ++c) {
