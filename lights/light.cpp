@@ -1,5 +1,7 @@
 #include "lights/light.h"
 
+#include "lights/point_source.h"
+
 namespace kasumi {
 
 namespace {
@@ -12,35 +14,79 @@ IncidentLight incident(const DirectionalLight& l, const Vec3&) {
 }
 
 IncidentLight incident(const PointLight& l, const Vec3& p) {
-    IncidentLight in;
-    const Vec3 to_light = l.position - p;
-    const float r2 = glm::dot(to_light, to_light);
-    in.light_position = l.position;
-    if (!(r2 > 1e-12f)) {
-        in.distance = 0.0f;
-        return in;
-    }
-    in.distance = std::sqrt(r2);
-    in.wi = to_light / in.distance;
-    in.irradiance = l.intensity / r2;
+    IncidentLight in = point_source_incident(l.position, p);
+    if (in.distance > 0.0f)
+        in.irradiance = l.intensity / (in.distance * in.distance);
     return in;
 }
 
+template <typename T>
+constexpr bool kIsDelta = std::is_same_v<T, DirectionalLight> || std::is_same_v<T, PointLight> ||
+                          std::is_same_v<T, SpotLight> || std::is_same_v<T, GoniometricLight>;
+
 }  // namespace
 
+bool is_delta(const Light& light) {
+    return std::visit([](const auto& e) { return kIsDelta<std::decay_t<decltype(e)>>; },
+                      light.emitter);
+}
+
 IncidentLight incident_light(const Light& light, const Vec3& p) {
-    return std::visit([&](const auto& emitter) { return incident(emitter, p); }, light.emitter);
+    return std::visit(
+        [&](const auto& e) {
+            if constexpr (kIsDelta<std::decay_t<decltype(e)>>) {
+                return incident(e, p);
+            } else {
+                return IncidentLight{};
+            }
+        },
+        light.emitter);
+}
+
+IncidentLight sample_incident(const Light& light, const Vec3& p, Vec2 u) {
+    return std::visit(
+        [&](const auto& e) {
+            if constexpr (kIsDelta<std::decay_t<decltype(e)>>) {
+                return incident(e, p);
+            } else {
+                return sample_incident(e, p, u);
+            }
+        },
+        light.emitter);
+}
+
+Rgb unshadowed_irradiance(const Light& light, const Vec3& p, const Vec3& n) {
+    return std::visit(
+        [&](const auto& e) {
+            if constexpr (kIsDelta<std::decay_t<decltype(e)>>) {
+                const IncidentLight in = incident(e, p);
+                return in.irradiance * std::max(0.0f, glm::dot(n, in.wi));
+            } else {
+                return unshadowed_irradiance(e, p, n);
+            }
+        },
+        light.emitter);
 }
 
 float luminous_flux_lm(const Light& light) {
-    if (const auto* point = std::get_if<PointLight>(&light.emitter)) {
-        return 4.0f * kPi * luminance(point->intensity);
-    }
-    return 0.0f;
+    struct Flux {
+        float operator()(const DirectionalLight&) const { return 0.0f; }
+        float operator()(const PointLight& l) const { return 4.0f * kPi * luminance(l.intensity); }
+        float operator()(const SpotLight& l) const {
+            return spot_flux_per_cd(l) * luminance(l.intensity);
+        }
+        float operator()(const GoniometricLight& l) const { return goniometric_flux_lm(l); }
+        float operator()(const LineLight& l) const { return line_flux_lm(l); }
+        float operator()(const PolygonLight& l) const { return polygon_flux_lm(l); }
+        float operator()(const SphereLight& l) const { return sphere_flux_lm(l); }
+    };
+    return std::visit(Flux{}, light.emitter);
 }
 
 std::string light_type_name(const Light& light) {
-    return std::holds_alternative<DirectionalLight>(light.emitter) ? "directional" : "point";
+    static const char* const kNames[] = {"directional", "point",   "spot",  "goniometric",
+                                         "line",        "polygon", "sphere"};
+    return kNames[light.emitter.index()];
 }
 
 }  // namespace kasumi

@@ -1,9 +1,16 @@
 #pragma once
 /// Lights, as a closed set of small value types. Units are photometric (see core/color.h for
 /// how Rgb carries photometric quantities): directional lights by illuminance in lux on a
-/// surface facing the light, point lights by luminous intensity in candela.
+/// surface facing the light, point-like lights by luminous intensity in candela, line lights
+/// by candela per metre, area and sphere lights by luminance in cd/m².
 #include "core/color.h"
 #include "core/math.h"
+#include "lights/goniometric_light.h"
+#include "lights/incident_light.h"
+#include "lights/line_light.h"
+#include "lights/polygon_light.h"
+#include "lights/sphere_light.h"
+#include "lights/spot_light.h"
 
 #include <string>
 #include <variant>
@@ -22,29 +29,41 @@ struct PointLight {
     Rgb intensity{0.0f};  ///< candela
 };
 
+/// How a light's visibility is decided.
+enum class ShadowMode {
+    Ray,   ///< shadow rays: one for a delta light, `samples` for an extended one
+    None,  ///< the light is never blocked
+};
+
 struct Light {
     std::string name;
-    std::variant<DirectionalLight, PointLight> emitter;
+    std::variant<DirectionalLight, PointLight, SpotLight, GoniometricLight, LineLight, PolygonLight,
+                 SphereLight>
+        emitter;
+    ShadowMode shadows = ShadowMode::Ray;
+    int samples = 16;  ///< shadow samples per shading point for extended (non-delta) lights
 };
 
-/// Light arriving at a point from one light, before occlusion and media.
-struct IncidentLight {
-    Vec3 wi{0.0f, 1.0f, 0.0f};   ///< unit direction from the point toward the light
-    float distance = kInfinity;  ///< to the light; kInfinity for directional lights
-    Vec3 light_position{0.0f};   ///< the light's position (point lights only)
-    Rgb irradiance{0.0f};        ///< lux on a surface facing the light (normal incidence)
-};
+/// True for lights that emit from one point or direction (directional, point, spot,
+/// goniometric): a single shadow ray decides their visibility.
+bool is_delta(const Light& light);
 
-/// The light `light` delivers at point p. For a point light closer than 1e-6 m the irradiance
-/// is zero rather than unbounded.
+/// The light a delta light delivers at point p. For a point-like light closer than 1e-6 m the
+/// irradiance is zero rather than unbounded. Extended lights return zero irradiance: sample them
+/// with sample_incident.
 IncidentLight incident_light(const Light& light, const Vec3& p);
 
-/// True if the light is a delta light (a single shadow ray decides its visibility).
-inline bool is_delta(const Light&) {
-    return true;
-}
+/// One sample of the light arriving at p, u uniform in [0, 1)²: for a delta light exactly
+/// incident_light (u unused); for an extended light a point on it with the normal-incidence
+/// irradiance divided by the pdf, so that the mean over samples of irradiance · max(0, n·wi) ·
+/// V(p, light_position) is an unbiased estimate of the shadowed illuminance E·V.
+IncidentLight sample_incident(const Light& light, const Vec3& p, Vec2 u);
 
-/// Luminous flux in lumens, for lights that have one (point: 4π I); 0 otherwise.
+/// Unoccluded illuminance in lux at p on a surface with unit normal n, in closed form for every
+/// light type (media and surfaces ignored).
+Rgb unshadowed_irradiance(const Light& light, const Vec3& p, const Vec3& n);
+
+/// Luminous flux in lumens for lights that have one; 0 for directional lights.
 float luminous_flux_lm(const Light& light);
 
 /// The light's type as written in scene files.

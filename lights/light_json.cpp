@@ -1,5 +1,9 @@
 #include "lights/light_json.h"
 
+#include "core/error.h"
+
+#include <filesystem>
+
 namespace kasumi {
 
 namespace {
@@ -14,6 +18,138 @@ Rgb read_color(JsonObjectReader& reader) {
     if (!(y > 0.0f))
         node->fail("must have non-zero luminance");
     return c / y;
+}
+
+/// Exactly one of two keys giving the same amount in different units; returns the amount in
+/// the first key's unit (a value of `second` is multiplied by `factor`).
+float one_of(JsonObjectReader& reader, const char* first, const char* second, float factor,
+             const char* light_kind) {
+    const auto a = reader.optional(first);
+    const auto b = reader.optional(second);
+    if (a && b)
+        b->fail(std::string("give either ") + first + " or " + second + ", not both");
+    if (a)
+        return a->non_negative();
+    if (b)
+        return b->non_negative() * factor;
+    reader.node().fail(std::string(light_kind) + " needs " + first + " or " + second);
+}
+
+float read_angle_deg(const JsonNode& node, float lo, float hi) {
+    const float deg = node.as_float();
+    if (!(deg > lo && deg <= hi)) {
+        node.fail("must be in (" + std::to_string(static_cast<int>(lo)) + ", " +
+                  std::to_string(static_cast<int>(hi)) + "] degrees");
+    }
+    return deg;
+}
+
+SpotLight parse_spot(JsonObjectReader& reader, const Rgb& color) {
+    SpotLight l;
+    l.position = reader.required("position").as_vec3();
+    l.direction = reader.required("direction").unit_direction();
+    const float cone_deg = read_angle_deg(reader.required("cone_deg"), 0.0f, 180.0f);
+    float falloff_deg = cone_deg;
+    if (const auto f = reader.optional("falloff_deg")) {
+        falloff_deg = f->as_float();
+        if (!(falloff_deg >= 0.0f && falloff_deg <= cone_deg))
+            f->fail("must be in [0, cone_deg] degrees");
+    }
+    l.cos_cone = std::cos(radians(cone_deg));
+    l.cos_falloff = std::cos(radians(falloff_deg));
+    l.intensity = color * one_of(reader, "intensity_cd", "flux_lm", 1.0f / spot_flux_per_cd(l),
+                                 "a spot light");
+    return l;
+}
+
+GoniometricLight parse_goniometric(JsonObjectReader& reader, const Rgb& color) {
+    GoniometricLight l;
+    l.position = reader.required("position").as_vec3();
+    const JsonNode ies = reader.required("ies");
+    std::filesystem::path path(ies.as_string());
+    if (path.is_relative())
+        path = std::filesystem::path(ies.file()).parent_path() / path;
+    try {
+        l.profile = std::make_shared<const IesProfile>(read_ies(path.lexically_normal().string()));
+    } catch (const Error& e) {
+        ies.fail(e.what());
+    }
+    Vec3 rotation_deg(0.0f);
+    if (const auto r = reader.optional("rotation_deg"))
+        rotation_deg = r->is_number() ? Vec3(0.0f, r->as_float(), 0.0f) : r->as_vec3();
+    l.local_to_world = luminaire_frame(rotation_deg);
+    l.scale = color;
+    if (const auto flux = reader.optional("flux_lm")) {
+        const double table_flux = ies_flux_lm(*l.profile);
+        if (!(table_flux > 0.0))
+            flux->fail("cannot rescale: the IES distribution emits no flux");
+        l.scale *= static_cast<float>(flux->non_negative() / table_flux);
+    }
+    return l;
+}
+
+LineLight parse_line(const JsonNode& node, JsonObjectReader& reader, const Rgb& color) {
+    LineLight l;
+    l.from = reader.required("from").as_vec3();
+    l.to = reader.required("to").as_vec3();
+    const float length = glm::length(l.to - l.from);
+    if (!(length > 0.0f))
+        node.fail("a line light needs from != to");
+    // Φ = π² I_l L for a Lambertian-in-angle line (docs/lights.md).
+    l.intensity_per_m = color * one_of(reader, "intensity_cd_per_m", "flux_lm",
+                                       1.0f / (kPi * kPi * length), "a line light");
+    return l;
+}
+
+PolygonLight parse_polygon(JsonObjectReader& reader, const Rgb& color) {
+    const JsonNode vertices_node = reader.required("vertices");
+    std::vector<Vec3> vertices;
+    for (const JsonNode& v : vertices_node.elements())
+        vertices.push_back(v.as_vec3());
+    const std::string problem = polygon_problem(vertices);
+    if (!problem.empty())
+        vertices_node.fail(problem);
+    const float l = reader.required("luminance_cd_m2").non_negative();
+    bool two_sided = false;
+    if (const auto t = reader.optional("two_sided"))
+        two_sided = t->as_bool();
+    return make_polygon_light(std::move(vertices), color * l, two_sided);
+}
+
+SphereLight parse_sphere(JsonObjectReader& reader, const Rgb& color) {
+    SphereLight l;
+    l.center = reader.required("center").as_vec3();
+    l.radius = reader.required("radius").positive();
+    l.luminance = color * reader.required("luminance_cd_m2").non_negative();
+    return l;
+}
+
+void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
+    if (const auto s = reader.optional("shadows")) {
+        const std::string mode = s->as_string();
+        if (mode == "ray") {
+            light.shadows = ShadowMode::Ray;
+        } else if (mode == "none") {
+            light.shadows = ShadowMode::None;
+        } else if (mode == "map" || mode == "shadow-volume") {
+            s->fail("\"" + mode +
+                    "\" shadows are not implemented in this build (use \"ray\" or "
+                    "\"none\")");
+        } else {
+            s->fail(
+                "unknown shadow mode (expected \"ray\", \"none\", \"map\" or "
+                "\"shadow-volume\")");
+        }
+    }
+    if (const auto n = reader.optional("samples")) {
+        if (is_delta(light))
+            n->fail("samples applies to line, polygon and sphere lights; a " +
+                    light_type_name(light) + " light takes one shadow ray");
+        const int64_t samples = n->as_int();
+        if (samples < 1 || samples > 4096)
+            n->fail("must be an integer in [1, 4096]");
+        light.samples = static_cast<int>(samples);
+    }
 }
 
 }  // namespace
@@ -35,22 +171,26 @@ Light parse_light(const JsonNode& node, size_t index) {
     } else if (type == "point") {
         PointLight l;
         l.position = reader.required("position").as_vec3();
-        const auto intensity = reader.optional("intensity_cd");
-        const auto flux = reader.optional("flux_lm");
-        if (intensity && flux)
-            flux->fail("give either intensity_cd or flux_lm, not both");
-        if (intensity) {
-            l.intensity = color * intensity->non_negative();
-        } else if (flux) {
-            // An isotropic source spreads its flux over 4π sr: I = Φ / (4π).
-            l.intensity = color * (flux->non_negative() / (4.0f * kPi));
-        } else {
-            node.fail("a point light needs intensity_cd or flux_lm");
-        }
+        // An isotropic source spreads its flux over 4π sr: I = Φ / (4π).
+        l.intensity =
+            color * one_of(reader, "intensity_cd", "flux_lm", 1.0f / (4.0f * kPi), "a point light");
         light.emitter = l;
+    } else if (type == "spot") {
+        light.emitter = parse_spot(reader, color);
+    } else if (type == "goniometric") {
+        light.emitter = parse_goniometric(reader, color);
+    } else if (type == "line") {
+        light.emitter = parse_line(node, reader, color);
+    } else if (type == "polygon") {
+        light.emitter = parse_polygon(reader, color);
+    } else if (type == "sphere") {
+        light.emitter = parse_sphere(reader, color);
     } else {
-        type_node.fail("unknown light type (expected directional or point)");
+        type_node.fail(
+            "unknown light type (expected directional, point, spot, goniometric, line, polygon "
+            "or sphere)");
     }
+    parse_shadow_settings(reader, light);
     reader.finish();
     return light;
 }

@@ -1,0 +1,31 @@
+#pragma once
+/// Sphere light: a sphere of uniform Lambertian luminance.
+#include "core/color.h"
+#include "lights/incident_light.h"
+
+namespace kasumi {
+
+struct SphereLight {
+    Vec3 center{0.0f};
+    float radius = 1.0f;  ///< m, > 0
+    Rgb luminance{0.0f};  ///< cd/m², the same seen from every direction
+};
+
+/// Unoccluded illuminance (lux) at p on a surface of unit normal n. The sphere subtends a cone
+/// of half-angle σ (sin σ = R/d) at angle θ from n. Fully above the horizon (θ ≤ π/2 − σ):
+/// E = π L sin²σ cos θ. Straddling it, the exact form factor of a tilted sphere (Snyder 1996,
+/// "Area Light Sources for Real-Time Graphics", MSR-TR-96-11; as written in Lagarde & de
+/// Rousiers 2014, "Moving Frostbite to Physically Based Rendering", §4.7), with x = cot σ,
+/// y = −x cot θ:  E/L = (cos θ acos y − x sin θ √(1−y²)) sin²σ + atan(sin θ √(1−y²) / x).
+/// Zero inside the sphere and fully below the horizon.
+Rgb unshadowed_irradiance(const SphereLight& light, const Vec3& p, const Vec3& n);
+
+/// A direction uniform in the cone the sphere subtends at p (pdf 1 / (2π (1 − cos σ)) per
+/// steradian), with the point where it meets the sphere; irradiance L · 2π (1 − cos σ). Zero
+/// inside the sphere.
+IncidentLight sample_incident(const SphereLight& light, const Vec3& p, Vec2 u);
+
+/// Luminous flux, lm: π L × 4π R².
+float sphere_flux_lm(const SphereLight& light);
+
+}  // namespace kasumi
