@@ -55,6 +55,18 @@ IncidentLight sample_incident(const Light& light, const Vec3& p, Vec2 u) {
         light.emitter);
 }
 
+IncidentLight sample_incident(const Light& light, const Vec3& p, Pcg32& rng) {
+    return is_delta(light) ? incident_light(light, p) : sample_incident(light, p, rng.next_vec2());
+}
+
+float shadow_sample_weight(const Light& light, const Vec3& p, const Vec3& n, float unshadowed_sum) {
+    if (is_delta(light))
+        return 1.0f;
+    if (!(unshadowed_sum > 0.0f))
+        return 0.0f;
+    return luminance(unshadowed_irradiance(light, p, n)) / unshadowed_sum;
+}
+
 Rgb unshadowed_irradiance(const Light& light, const Vec3& p, const Vec3& n) {
     return std::visit(
         [&](const auto& e) {

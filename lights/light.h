@@ -5,6 +5,7 @@
 /// by candela per metre, area and sphere lights by luminance in cd/m².
 #include "core/color.h"
 #include "core/math.h"
+#include "core/rng.h"
 #include "lights/goniometric_light.h"
 #include "lights/incident_light.h"
 #include "lights/line_light.h"
@@ -58,6 +59,19 @@ IncidentLight incident_light(const Light& light, const Vec3& p);
 /// irradiance divided by the pdf, so that the mean over samples of irradiance · max(0, n·wi) ·
 /// V(p, light_position) is an unbiased estimate of the shadowed illuminance E·V.
 IncidentLight sample_incident(const Light& light, const Vec3& p, Vec2 u);
+
+/// The same, drawing u from `rng` only for extended lights, so that scenes with delta lights
+/// alone consume the same random numbers as before extended lights existed.
+IncidentLight sample_incident(const Light& light, const Vec3& p, Pcg32& rng);
+
+/// The weight that turns Σ_k f_k E_k cos θ_k V_k over one shading point's samples of `light`
+/// into its reflected radiance, with `unshadowed_sum` = Σ_k luminance(E_k) max(0, cos θ_k) over
+/// the same samples (visible or not). Delta lights: 1. Extended lights: the "analytic times
+/// visible fraction" ratio estimator E(p, n) / unshadowed_sum, E the closed-form unoccluded
+/// illuminance (0 when the sum is 0). It is exact where the light is entirely visible (no
+/// noise outside penumbrae) or entirely hidden, and otherwise biased by O(1/N) (a ratio of
+/// means; docs/lights.md) while consistent.
+float shadow_sample_weight(const Light& light, const Vec3& p, const Vec3& n, float unshadowed_sum);
 
 /// Unoccluded illuminance in lux at p on a surface with unit normal n, in closed form for every
 /// light type (media and surfaces ignored).

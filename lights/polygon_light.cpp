@@ -12,20 +12,28 @@ DVec3 vector_area2(const std::vector<Vec3>& v) {
     return sum;
 }
 
+/// Vertices relative to the receiver; a plane cuts a convex polygon in at most two edges, so
+/// clipping adds at most one vertex. Fixed-size: the closed form runs per shading point.
+struct ClippedPolygon {
+    DVec3 r[kMaxPolygonVertices + 1];
+    size_t count = 0;
+};
+
 /// Sutherland-Hodgman clip of a polygon (relative to p) to the half-space n·r ≥ 0; the order of
 /// the vertices is kept, so the orientation is too.
-std::vector<DVec3> clip_to_upper_half_space(const std::vector<DVec3>& r, const DVec3& n) {
-    std::vector<DVec3> out;
-    out.reserve(r.size() + 1);
-    for (size_t i = 0; i < r.size(); ++i) {
-        const DVec3& a = r[i];
-        const DVec3& b = r[(i + 1) % r.size()];
+ClippedPolygon clip_to_upper_half_space(const std::vector<Vec3>& vertices, const DVec3& p,
+                                        const DVec3& n) {
+    ClippedPolygon out;
+    const size_t count = vertices.size();
+    for (size_t i = 0; i < count; ++i) {
+        const DVec3 a = DVec3(vertices[i]) - p;
+        const DVec3 b = DVec3(vertices[(i + 1) % count]) - p;
         const double da = glm::dot(n, a), db = glm::dot(n, b);
-        if (da >= 0.0)
-            out.push_back(a);
-        if ((da >= 0.0) != (db >= 0.0)) {
+        if (da >= 0.0 && out.count <= kMaxPolygonVertices)
+            out.r[out.count++] = a;
+        if ((da >= 0.0) != (db >= 0.0) && out.count <= kMaxPolygonVertices) {
             const double t = da / (da - db);
-            out.push_back(a + t * (b - a));
+            out.r[out.count++] = a + t * (b - a);
         }
     }
     return out;
@@ -37,6 +45,8 @@ std::string polygon_problem(const std::vector<Vec3>& vertices) {
     const size_t count = vertices.size();
     if (count < 3)
         return "a polygon needs at least 3 vertices";
+    if (count > kMaxPolygonVertices)
+        return "a polygon light has at most " + std::to_string(kMaxPolygonVertices) + " vertices";
     double size = 0.0;
     for (const Vec3& v : vertices)
         size = std::max(size, glm::length(DVec3(v - vertices[0])));
@@ -87,20 +97,17 @@ Rgb unshadowed_irradiance(const PolygonLight& light, const Vec3& p, const Vec3& 
     const double side = glm::dot(q - DVec3(light.vertices[0]), normal);
     if (side == 0.0 || (side < 0.0 && !light.two_sided))
         return Rgb(0.0f);
-    std::vector<DVec3> r;
-    r.reserve(light.vertices.size());
-    for (const Vec3& v : light.vertices)
-        r.push_back(DVec3(v) - q);
-    r = clip_to_upper_half_space(r, nd);
-    if (r.size() < 3)
+    const ClippedPolygon clipped = clip_to_upper_half_space(light.vertices, q, nd);
+    const size_t count = clipped.count;
+    if (count < 3)
         return Rgb(0.0f);
     // Stored vertices wind counter-clockwise seen from the front; from the back they appear
     // clockwise, which flips the sign of every term.
     const double orientation = side > 0.0 ? 1.0 : -1.0;
     double sum = 0.0;
-    for (size_t i = 0; i < r.size(); ++i) {
-        const DVec3& a = r[i];
-        const DVec3& b = r[(i + 1) % r.size()];
+    for (size_t i = 0; i < count; ++i) {
+        const DVec3& a = clipped.r[i];
+        const DVec3& b = clipped.r[(i + 1) % count];
         const DVec3 c = glm::cross(b, a);
         const double len = glm::length(c);
         if (!(len > 0.0))

@@ -8,6 +8,8 @@
 
 namespace kasumi {
 
+inline constexpr size_t kMaxPolygonVertices = 64;
+
 /// A convex planar polygon that emits luminance L from its front: the side toward which its
 /// vertices wind counter-clockwise (the right-hand rule: `normal` = normalised Σ v_i × v_{i+1}),
 /// or from both sides when two_sided. Build with make_polygon_light.
@@ -21,8 +23,8 @@ struct PolygonLight {
     bool two_sided = false;
 };
 
-/// Why `vertices` cannot be a polygon light (fewer than 3, zero area, not planar to 1e-4 of its
-/// size, not convex, repeated vertices), or "" when they can.
+/// Why `vertices` cannot be a polygon light (fewer than 3 or more than kMaxPolygonVertices, zero
+/// area, not planar to 1e-4 of its size, not convex, repeated vertices), or "" when they can.
 std::string polygon_problem(const std::vector<Vec3>& vertices);
 
 /// Precomputes normal, area and the fan CDF; `vertices` must pass polygon_problem.
