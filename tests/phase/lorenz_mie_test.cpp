@@ -19,7 +19,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 
 namespace kasumi {
 namespace {
@@ -150,13 +149,12 @@ TEST(LorenzMie, NumberOfTermsIsWiscombes) {
     EXPECT_EQ(wiscombe_n_terms(1e4), 10088);  // 1e4 + 4 · 21.54 + 2 = 10088.2
 }
 
-TEST(LorenzMie, FiniteAndFastAtLargestSizeParameter) {
+// Speed at x = 2e4 is measured by bench/, never asserted here (timed unit tests are flaky on a
+// shared machine).
+TEST(LorenzMie, FiniteAtLargestSizeParameter) {
     for (const Complex m : {Complex(1.33, 0.0), Complex(1.33, 1e-5), Complex(1.5, 1.0),
                             Complex(0.75, 0.0), Complex(10.0, 10.0)}) {
-        const auto start = std::chrono::steady_clock::now();
         const Mie mie = make_mie(2e4, m);
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const MieEfficiencies& q = mie.summary->efficiencies;
         EXPECT_TRUE(std::isfinite(q.qext) && std::isfinite(q.qsca) && std::isfinite(q.qback) &&
                     std::isfinite(q.g));
@@ -167,7 +165,6 @@ TEST(LorenzMie, FiniteAndFastAtLargestSizeParameter) {
         EXPECT_LT(q.g, 1.0);
         for (const double v : mie.table->value())
             ASSERT_TRUE(std::isfinite(v) && v >= 0.0);
-        EXPECT_LT(seconds, 1.0) << "table at x = 2e4 took " << seconds << " s";
     }
 }
 
