@@ -1,10 +1,12 @@
 #include "apps/commands.h"
 
+#include "apps/illuminance_command.h"
 #include "apps/output_writer.h"
 #include "apps/scene_options.h"
 #include "core/error.h"
 #include "render/probe.h"
 #include "render/renderer.h"
+#include "volume/transmittance.h"
 
 #include <atomic>
 #include <csignal>
@@ -12,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace kasumi {
@@ -196,6 +199,7 @@ void add_check_command(CLI::App& root) {
 void add_probe_command(CLI::App& root) {
     CLI::App* probe = root.add_subcommand("probe", "measure one quantity; JSON on stdout");
     probe->require_subcommand(1);
+    add_illuminance_command(*probe);
 
     struct RadianceOptions {
         SceneOptions scene;
@@ -221,6 +225,44 @@ void add_probe_command(CLI::App& root) {
         print_json(Json{{"radiance", rgb_json(p.radiance)},
                         {"stderr", rgb_json(p.stderr_)},
                         {"luminance_cd_m2", p.luminance_cd_m2},
+                        {"samples", p.samples}});
+    });
+
+    struct TransmittanceOptions {
+        SceneOptions scene;
+        std::string from, to, estimator;
+        int samples = 1000;
+    };
+    auto t_options = std::make_shared<TransmittanceOptions>();
+    CLI::App* t_cmd = probe->add_subcommand(
+        "transmittance", "transmittance of all media between two points (surfaces ignored)");
+    t_options->scene.add_to(*t_cmd);
+    t_cmd->add_option("--from", t_options->from, "segment start X,Y,Z (metres)")->required();
+    t_cmd->add_option("--to", t_options->to, "segment end X,Y,Z (metres)")->required();
+    t_cmd->add_option("--estimator", t_options->estimator,
+                      "march | delta | ratio | residual-ratio (default: the scene's)");
+    t_cmd->add_option("--samples", t_options->samples, "estimates averaged (default 1000)")
+        ->check(CLI::Range(1, 1 << 24));
+    t_cmd->callback([t_options] {
+        const Vec3 from = parse_vec3_arg(t_options->from, "--from");
+        const Vec3 to = parse_vec3_arg(t_options->to, "--to");
+        std::optional<Estimator> estimator;
+        if (!t_options->estimator.empty()) {
+            estimator = estimator_from_name(t_options->estimator);
+            if (!estimator) {
+                throw Error(ErrorKind::Usage,
+                            "--estimator expects march, delta, ratio or "
+                            "residual-ratio, got \"" +
+                                t_options->estimator + "\"");
+            }
+        }
+        const SceneRuntime runtime(t_options->scene.load());
+        const Estimator chosen = estimator ? *estimator : runtime.desc().render.volume.estimator;
+        const TransmittanceProbe p =
+            probe_transmittance(runtime, from, to, chosen, t_options->samples);
+        print_json(Json{{"transmittance", rgb_json(p.transmittance)},
+                        {"stderr", rgb_json(p.stderr_)},
+                        {"estimator", estimator_name(chosen)},
                         {"samples", p.samples}});
     });
 }

@@ -1,6 +1,7 @@
 /// kasumi: the command-line interface. Thin: parses arguments, calls the library, maps errors to
 /// exit codes (0 ok, 1 runtime, 2 usage, 3 invalid input, 4 cannot write, 5 validation failed,
 /// 130/143 interrupted).
+#include "apps/cloud_command.h"
 #include "apps/commands.h"
 #include "apps/phase_command.h"
 #include "core/error.h"
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
     kasumi::add_check_command(app);
     kasumi::add_probe_command(app);
     kasumi::add_phase_command(app);
+    kasumi::add_make_cloud_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

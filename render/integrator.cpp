@@ -1,5 +1,8 @@
 #include "render/integrator.h"
 
+#include "volume/transmittance.h"
+#include "volume/volume_path.h"
+
 namespace kasumi {
 
 namespace {
@@ -15,9 +18,35 @@ Rgb phong_brdf(const PhongMaterial& m, const Vec3& n, const Vec3& wo, const Vec3
     return f;
 }
 
+/// What scattered paths meet beyond the media: the directly lit surfaces, or the background.
+class RenderPathEnvironment final : public PathEnvironment {
+  public:
+    RenderPathEnvironment(const SceneRuntime& scene, RenderCounters& counters)
+        : m_scene(scene), m_counters(counters) {}
+    float surface_distance(const Ray& ray) const override {
+        if (m_scene.surfaces() == nullptr)
+            return kInfinity;
+        const auto hit = m_scene.surfaces()->intersect(ray);
+        return hit ? hit->t : kInfinity;
+    }
+    Rgb radiance(const Ray& ray, Pcg32& rng) const override {
+        if (m_scene.surfaces() != nullptr) {
+            Ray unbounded = ray;
+            unbounded.t_max = kInfinity;
+            if (const auto hit = m_scene.surfaces()->intersect(unbounded))
+                return shade_surface(m_scene, *hit, -ray.direction, rng, m_counters);
+        }
+        return m_scene.desc().background;
+    }
+
+  private:
+    const SceneRuntime& m_scene;
+    RenderCounters& m_counters;
+};
+
 }  // namespace
 
-Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo,
+Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo, Pcg32& rng,
                   RenderCounters& counters) {
     const SceneDesc& desc = scene.desc();
     const PhongMaterial& material = std::get<PhongMaterial>(desc.materials[hit.material]);
@@ -43,8 +72,11 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
         const Vec3 origin = offset_ray_origin(hit, in.wi);
         Rgb t_media(1.0f);
         if (scene.plan().volume) {
-            t_media = scene.media().transmittance(
-                Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance});
+            VolumeCounters vc;
+            const VolumeSettings& volume = desc.render.volume;
+            t_media = estimate_transmittance(
+                scene.media(), Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance},
+                volume.estimator, march_step_m(scene.media(), volume), rng, vc);
             if (is_black(t_media))
                 continue;
         }
@@ -74,7 +106,7 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
             t_end = hit->t;
             sample.depth = hit->t * glm::dot(ray.direction, scene.camera().forward());
             sample.albedo = albedo(scene.desc().materials[hit->material]);
-            sample.surface = shade_surface(scene, *hit, wo, counters);
+            sample.surface = shade_surface(scene, *hit, wo, rng, counters);
         }
     }
     if (!sample.hit)
@@ -85,9 +117,10 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
         VolumeCounters vc;
         Ray segment = ray;
         segment.t_max = t_end;
-        const VolumeResult v =
-            integrate_volume(scene.media(), scene.desc().lights, scene.occlusion(), segment,
-                             scene.desc().render.volume, scene.plan().in_scattering, rng, vc);
+        const RenderPathEnvironment environment(scene, counters);
+        const VolumeResult v = integrate_media(
+            scene.media(), scene.desc().lights, scene.occlusion(), &environment, segment,
+            scene.desc().render.volume, scene.plan().in_scattering, rng, vc);
         counters.volume_steps += vc.steps;
         counters.volume_shadow_rays += vc.shadow_rays;
         sample.volume = v.radiance;

@@ -13,8 +13,10 @@ namespace kasumi {
 PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
                              RenderCounters& counters);
 
-/// Phong shading of a surface point by the scene's lights and ambient term (no media in front).
-Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo,
+/// Phong shading of a surface point by the scene's lights and ambient term. Media between the
+/// surface and each light attenuate it through the scene's transmittance estimator (stochastic
+/// for grids; `rng` drives it).
+Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo, Pcg32& rng,
                   RenderCounters& counters);
 
 }  // namespace kasumi

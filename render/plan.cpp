@@ -1,6 +1,7 @@
 #include "render/plan.h"
 
 #include "volume/medium_set.h"
+#include "volume/transmittance.h"
 
 #include <sstream>
 
@@ -10,7 +11,8 @@ namespace {
 
 bool any_ambient_material(const SceneDesc& scene) {
     for (const Material& m : scene.materials) {
-        if (max_component(std::get<PhongMaterial>(m).ka) > 0.0f)
+        const auto* phong = std::get_if<PhongMaterial>(&m);
+        if (phong != nullptr && max_component(phong->ka) > 0.0f)
             return true;
     }
     return false;
@@ -18,6 +20,44 @@ bool any_ambient_material(const SceneDesc& scene) {
 
 std::string count(size_t n, const char* what) {
     return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+std::string media_summary(const SceneDesc& scene) {
+    size_t grids = 0;
+    for (const Medium& m : scene.media)
+        grids += std::holds_alternative<VdbMedium>(m.model) ? 1 : 0;
+    const size_t boxes = scene.media.size() - grids;
+    std::string text;
+    if (boxes > 0)
+        text = count(boxes, "homogeneous medium");
+    if (grids > 0)
+        text += (text.empty() ? "" : " + ") + count(grids, "VDB grid");
+    return text;
+}
+
+std::string estimator_summary(const SceneDesc& scene) {
+    const VolumeSettings& volume = scene.render.volume;
+    const bool homogeneous = MediumSet(scene.media).all_homogeneous();
+    std::string text = std::string("estimator ") + estimator_name(volume.estimator) +
+                       (volume.estimator_given ? "" : " (default for these media)");
+    switch (volume.estimator) {
+        case Estimator::March:
+            text += homogeneous ? ", exact Beer-Lambert per stretch"
+                                : ", trapezoid rule, jittered fixed step (biased)";
+            break;
+        case Estimator::Delta:
+            text += ", delta tracking (unbiased, 0 or 1)";
+            break;
+        case Estimator::Ratio:
+            text += ", ratio tracking (unbiased)";
+            break;
+        case Estimator::ResidualRatio:
+            text += ", residual ratio tracking against the minorant (unbiased)";
+            break;
+    }
+    if (!homogeneous)
+        text += "; per-brick majorants, DDA skips empty bricks";
+    return text;
 }
 
 }  // namespace
@@ -54,26 +94,43 @@ Plan make_plan(const SceneDesc& scene) {
                            plan.ambient ? "ambient light and materials with ka > 0"
                                         : "ambient light or every ka is zero"});
 
+    const VolumeSettings& volume = scene.render.volume;
+    const bool multiple = volume.integrator == VolumeIntegrator::Multiple;
     plan.volume = has_media;
     plan.stages.push_back(
         {"volume-transmittance", plan.volume,
-         has_media ? count(scene.media.size(), "homogeneous medium") + ": exact Beer-Lambert"
-                   : "no media"});
+         has_media ? media_summary(scene) + ": " + estimator_summary(scene) : "no media"});
 
-    plan.in_scattering = has_media && media_scatter && has_lights;
+    // Multiple scattering lights media from the background too, without lights.
+    const bool lit = has_lights || (multiple && max_component(scene.background) > 0.0f);
+    plan.in_scattering = has_media && media_scatter && lit;
+    const bool exact_stretches = MediumSet(scene.media).all_homogeneous() &&
+                                 volume.estimator == Estimator::March && !multiple;
     plan.stages.push_back(
         {"volume-in-scattering", plan.in_scattering,
-         plan.in_scattering ? "single scattering, marched with step " +
-                                  std::to_string(scene.render.volume.step_m) + " m" +
-                                  (plan.shadow_rays ? ", shadowed by surfaces" : "")
-         : !has_media     ? "no media"
-         : !media_scatter ? "media do not scatter (sigma_s = 0): transmittance only"
-                          : "no lights to scatter"});
+         !plan.in_scattering ? (!has_media       ? "no media"
+                                : !media_scatter ? "media do not scatter (sigma_s = 0): "
+                                                   "transmittance only"
+                                                 : "no lights to scatter")
+         : exact_stretches
+             ? "single scattering, marched with step " + std::to_string(volume.step_m) + " m" +
+                   (plan.shadow_rays ? ", shadowed by surfaces" : "")
+         : volume.estimator == Estimator::March && !multiple
+             ? "single scattering, fixed-step march (" + std::to_string(volume.step_m) +
+                   " m or step_voxels), light to every node through the march"
+             : std::string(multiple ? "paths" : "single scattering") +
+                   ": free flights by spectral (delta) tracking over per-brick majorants, "
+                   "next-event estimation to every light through " +
+                   estimator_name(volume.estimator) +
+                   (plan.shadow_rays ? ", shadowed by surfaces" : "")});
 
-    plan.stages.push_back({"multiple-scattering", false,
-                           plan.in_scattering
-                               ? "not in this build: light scattered more than once is left out"
-                               : "no in-scattering"});
+    plan.stages.push_back(
+        {"multiple-scattering", plan.in_scattering && multiple,
+         !plan.in_scattering ? "no in-scattering"
+         : multiple ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
+                          ", Russian roulette from the third scattering"
+                    : "render.volume.integrator is \"single\": light scattered more than once "
+                      "is left out"});
     plan.stages.push_back({"background", max_component(scene.background) > 0.0f,
                            max_component(scene.background) > 0.0f ? "constant background radiance"
                                                                   : "black background"});

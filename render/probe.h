@@ -16,4 +16,16 @@ struct RadianceProbe {
 RadianceProbe probe_radiance(const SceneRuntime& scene, const Vec3& origin, const Vec3& direction,
                              int spp);
 
+struct TransmittanceProbe {
+    Rgb transmittance{1.0f};  ///< mean over samples
+    Rgb stderr_{0.0f};        ///< standard error of the mean per channel
+    int samples = 0;
+};
+
+/// Transmittance of all media of the scene on the segment from `from` to `to` (surfaces
+/// ignored), averaged over `samples` estimates by `estimator` with generators keyed by
+/// (sample, seed). The march uses the scene's step.
+TransmittanceProbe probe_transmittance(const SceneRuntime& scene, const Vec3& from, const Vec3& to,
+                                       Estimator estimator, int samples);
+
 }  // namespace kasumi

@@ -4,6 +4,7 @@
 #include "lights/light_json.h"
 #include "volume/medium_json.h"
 #include "volume/medium_set.h"
+#include "volume/transmittance.h"
 
 #include <filesystem>
 #include <map>
@@ -73,6 +74,27 @@ RenderSettings parse_render(const JsonNode& node) {
         JsonObjectReader volume(*v);
         if (auto step = volume.optional("step_m"))
             render.volume.step_m = step->positive();
+        if (auto step = volume.optional("step_voxels"))
+            render.volume.step_voxels = step->positive();
+        if (auto e = volume.optional("estimator")) {
+            const auto estimator = estimator_from_name(e->as_string());
+            if (!estimator)
+                e->fail("expected \"march\", \"delta\", \"ratio\" or \"residual-ratio\"");
+            render.volume.estimator = *estimator;
+            render.volume.estimator_given = true;
+        }
+        if (auto integrator = volume.optional("integrator")) {
+            const std::string name = integrator->as_string();
+            if (name == "single") {
+                render.volume.integrator = VolumeIntegrator::Single;
+            } else if (name == "multiple") {
+                render.volume.integrator = VolumeIntegrator::Multiple;
+            } else {
+                integrator->fail("expected \"single\" or \"multiple\"");
+            }
+        }
+        if (auto depth = volume.optional("max_depth"))
+            render.volume.max_depth = parse_int_in(*depth, 1, 1 << 16);
         if (auto sampling = volume.optional("light_sampling")) {
             const std::string name = sampling->as_string();
             if (name == "all") {
@@ -84,6 +106,14 @@ RenderSettings parse_render(const JsonNode& node) {
             }
         }
         volume.finish();
+    }
+    if (auto v = reader.optional("whitted")) {
+        JsonObjectReader whitted(*v);
+        if (auto depth = whitted.optional("max_depth"))
+            render.whitted.max_depth = parse_int_in(*depth, 0, 64);
+        if (auto weight = whitted.optional("min_weight"))
+            render.whitted.min_weight = weight->in_closed(0.0f, 1.0f);
+        whitted.finish();
     }
     if (auto v = reader.optional("preview")) {
         JsonObjectReader preview(*v);
@@ -202,8 +232,14 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file) {
         if (v->size() > kMaxMedia)
             v->fail("at most " + std::to_string(kMaxMedia) + " media");
         for (const JsonNode& m : v->elements()) {
-            scene.media.push_back(parse_medium(m, scene.media.size()));
+            scene.media.push_back(parse_medium(m, scene.media.size(), scene.base_dir));
         }
+    }
+    // Unless the scene names one: exact stretches suit homogeneous media, residual ratio
+    // tracking (unbiased, exact where a brick is constant) suits grids.
+    if (!scene.render.volume.estimator_given) {
+        scene.render.volume.estimator =
+            MediumSet(scene.media).all_homogeneous() ? Estimator::March : Estimator::ResidualRatio;
     }
     reader.optional("comment");  // free text for the scene's author
     reader.finish();

@@ -17,9 +17,29 @@ enum class LightSampling {
     One,  ///< one light, chosen in proportion to its unshadowed contribution; one shadow ray
 };
 
+/// Transmittance estimator (docs/volumes.md states each one's bias and variance).
+enum class Estimator {
+    March,          ///< fixed jittered step, trapezoid rule for tau: biased, O(step²)
+    Delta,          ///< delta tracking: unbiased, binary (0 or 1) per channel
+    Ratio,          ///< ratio tracking (Novák et al. 2014): unbiased
+    ResidualRatio,  ///< residual ratio tracking with the minorant as control: unbiased
+};
+
+/// How light scattered in media reaches the camera.
+enum class VolumeIntegrator {
+    Single,    ///< single scattering: next-event estimation to every light
+    Multiple,  ///< volumetric path tracing with next-event estimation and Russian roulette
+};
+
 struct VolumeSettings {
     float step_m = 0.25f;  ///< longest march step, metres
     LightSampling light_sampling = LightSampling::One;
+    /// > 0: march step in voxels of the finest grid (replaces step_m when grids are present).
+    float step_voxels = 0.0f;
+    Estimator estimator = Estimator::March;
+    bool estimator_given = false;  ///< false: chosen from the media by the loader
+    VolumeIntegrator integrator = VolumeIntegrator::Single;
+    int max_depth = 256;  ///< scattering events per path (multiple scattering)
 };
 
 struct VolumeResult {
@@ -28,8 +48,11 @@ struct VolumeResult {
 };
 
 struct VolumeCounters {
-    uint64_t steps = 0;        ///< in-scattering samples taken
-    uint64_t shadow_rays = 0;  ///< surface occlusion tests toward lights
+    uint64_t steps = 0;            ///< in-scattering samples taken
+    uint64_t shadow_rays = 0;      ///< surface occlusion tests toward lights
+    uint64_t density_lookups = 0;  ///< point evaluations of the media coefficients
+    uint64_t transmittance_estimates = 0;
+    uint64_t scattering_events = 0;  ///< real scattering collisions (tracking integrators)
 };
 
 /// Single scattering by ray marching. Each march step [a, a + dt] inside a stretch of constant

@@ -1,10 +1,12 @@
 #pragma once
-/// Participating media as a closed set of value types (homogeneous now; height fog, VDB grids
-/// and the atmosphere join later). Coefficients are per metre, per RGB channel.
+/// Participating media as a closed set of value types (homogeneous boxes and VDB density grids;
+/// height fog and the atmosphere join later). Coefficients are per metre, per RGB channel.
 #include "core/bounds.h"
 #include "core/color.h"
 #include "phase/phase_function.h"
+#include "volume/density_grid.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -22,9 +24,26 @@ struct HomogeneousMedium {
     Rgb sigma_t() const { return sigma_a + sigma_s; }
 };
 
+/// A density grid (from an OpenVDB file) scaled into coefficients: at a world point x,
+/// sigma_a(x) = density(x) * sigma_a_per_density and likewise sigma_s, where density(x) is the
+/// grid's trilinear value at world_to_index(x) (already multiplied by `density_scale`).
+struct VdbMedium {
+    std::shared_ptr<const DensityGrid> grid;
+    Mat4 world_to_index{1.0f};      ///< affine: world metres to grid index space
+    Rgb sigma_a_per_density{0.0f};  ///< 1/m per unit density, density_scale folded in
+    Rgb sigma_s_per_density{0.0f};  ///< 1/m per unit density, density_scale folded in
+    PhaseFunction phase = Isotropic{};
+    Bounds3 bounds_world;       ///< world box holding every non-zero density
+    float voxel_size_m = 1.0f;  ///< shortest world length of a voxel edge
+    std::string file;           ///< the grid file, for messages and the plan
+    std::string grid_name;
+
+    Rgb sigma_t_per_density() const { return sigma_a_per_density + sigma_s_per_density; }
+};
+
 struct Medium {
     std::string name;
-    std::variant<HomogeneousMedium> model;
+    std::variant<HomogeneousMedium, VdbMedium> model;
 };
 
 /// Single-scattering albedo sigma_s / sigma_t per channel (0 where sigma_t = 0).

@@ -1,20 +1,18 @@
 #include "volume/medium_json.h"
 
 #include "phase/phase_json.h"
+#include "volume/vdb_io.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <filesystem>
 
 namespace kasumi {
 
-Medium parse_medium(const JsonNode& node, size_t index) {
-    JsonObjectReader reader(node);
-    Medium medium;
-    medium.name = "medium" + std::to_string(index);
-    if (auto name = reader.optional("name"))
-        medium.name = name->as_string();
-    const JsonNode type_node = reader.required("type");
-    const std::string type = type_node.as_string();
-    if (type != "homogeneous")
-        type_node.fail("unknown medium type (expected homogeneous)");
+namespace {
 
+HomogeneousMedium parse_homogeneous(JsonObjectReader& reader) {
     HomogeneousMedium m;
     if (auto bounds = reader.optional("bounds")) {
         if (!bounds->is_array() || bounds->size() != 2)
@@ -29,8 +27,111 @@ Medium parse_medium(const JsonNode& node, size_t index) {
     m.sigma_s = reader.required("sigma_s").non_negative_rgb();
     if (auto phase = reader.optional("phase"))
         m.phase = parse_phase(*phase);
+    return m;
+}
+
+/// {"translate": [x, y, z] m, "rotate": [rx, ry, rz] degrees (about world x, then y, then z),
+/// "scale": s or [sx, sy, sz] > 0}, composed as translate * rotate * scale.
+glm::dmat4 parse_transform(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    glm::dmat4 m(1.0);
+    if (auto v = reader.optional("translate"))
+        m = glm::translate(m, glm::dvec3(v->as_vec3()));
+    if (auto v = reader.optional("rotate")) {
+        const glm::dvec3 deg(v->as_vec3());
+        m = glm::rotate(m, glm::radians(deg.z), glm::dvec3(0, 0, 1));
+        m = glm::rotate(m, glm::radians(deg.y), glm::dvec3(0, 1, 0));
+        m = glm::rotate(m, glm::radians(deg.x), glm::dvec3(1, 0, 0));
+    }
+    if (auto v = reader.optional("scale")) {
+        const Rgb s = v->as_rgb();
+        if (!(s.x > 0.0f && s.y > 0.0f && s.z > 0.0f))
+            v->fail("must be > 0 on every axis");
+        m = glm::scale(m, glm::dvec3(s));
+    }
     reader.finish();
-    medium.model = m;
+    return m;
+}
+
+VdbMedium parse_vdb(JsonObjectReader& reader, const std::string& base_dir) {
+    VdbMedium m;
+    const JsonNode file_node = reader.required("file");
+    std::filesystem::path file = file_node.as_string();
+    if (file.is_relative() && !base_dir.empty())
+        file = std::filesystem::path(base_dir) / file;
+    m.file = file.string();
+    std::string grid_name;
+    if (auto v = reader.optional("grid"))
+        grid_name = v->as_string();
+    float density_scale = 1.0f;
+    if (auto v = reader.optional("density_scale"))
+        density_scale = v->non_negative();
+
+    auto albedo = reader.optional("albedo");
+    auto sigma_a = reader.optional("sigma_a");
+    auto sigma_s = reader.optional("sigma_s");
+    if (albedo && (sigma_a || sigma_s))
+        albedo->fail("give either albedo or sigma_a and sigma_s, not both");
+    if (bool(sigma_a) != bool(sigma_s))
+        (sigma_a ? *sigma_a : *sigma_s).fail("sigma_a and sigma_s go together");
+    if (sigma_a) {
+        m.sigma_a_per_density = sigma_a->non_negative_rgb() * density_scale;
+        m.sigma_s_per_density = sigma_s->non_negative_rgb() * density_scale;
+    } else {
+        // albedo form: extinction per unit density is density_scale (1/m).
+        Rgb a(1.0f);
+        if (albedo) {
+            a = albedo->non_negative_rgb();
+            if (max_component(a) > 1.0f)
+                albedo->fail("must be in [0, 1] per channel");
+        }
+        m.sigma_s_per_density = a * density_scale;
+        m.sigma_a_per_density = (Rgb(1.0f) - a) * density_scale;
+    }
+    if (auto v = reader.optional("phase"))
+        m.phase = parse_phase(*v);
+    glm::dmat4 user(1.0);
+    if (auto v = reader.optional("transform"))
+        user = parse_transform(*v);
+
+    const LoadedGrid loaded =
+        load_density_grid(m.file, grid_name, file_node.file() + ": " + file_node.pointer());
+    m.grid = loaded.grid;
+    m.grid_name = loaded.grid_name;
+    const glm::dmat4 index_to_world = user * loaded.index_to_world;
+    m.world_to_index = Mat4(glm::inverse(index_to_world));
+    m.voxel_size_m = static_cast<float>(std::min({glm::length(glm::dvec3(index_to_world[0])),
+                                                  glm::length(glm::dvec3(index_to_world[1])),
+                                                  glm::length(glm::dvec3(index_to_world[2]))}));
+    if (!m.grid->empty()) {
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p((corner & 1) ? m.grid->upper().x : m.grid->lower().x,
+                               (corner & 2) ? m.grid->upper().y : m.grid->lower().y,
+                               (corner & 4) ? m.grid->upper().z : m.grid->lower().z);
+            m.bounds_world.extend(Vec3(glm::dvec3(index_to_world * glm::dvec4(p, 1.0))));
+        }
+    }
+    return m;
+}
+
+}  // namespace
+
+Medium parse_medium(const JsonNode& node, size_t index, const std::string& base_dir) {
+    JsonObjectReader reader(node);
+    Medium medium;
+    medium.name = "medium" + std::to_string(index);
+    if (auto name = reader.optional("name"))
+        medium.name = name->as_string();
+    const JsonNode type_node = reader.required("type");
+    const std::string type = type_node.as_string();
+    if (type == "homogeneous") {
+        medium.model = parse_homogeneous(reader);
+    } else if (type == "vdb") {
+        medium.model = parse_vdb(reader, base_dir);
+    } else {
+        type_node.fail("unknown medium type (expected homogeneous or vdb)");
+    }
+    reader.finish();
     return medium;
 }
 

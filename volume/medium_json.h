@@ -5,8 +5,9 @@
 
 namespace kasumi {
 
-/// Parses one entry of `media`: {"type": "homogeneous", "bounds"?: [min, max], "sigma_a",
-/// "sigma_s" (1/m, scalar or RGB, >= 0), "phase"?: {...}, "name"?}. `index` names unnamed media.
-Medium parse_medium(const JsonNode& node, size_t index);
+/// Parses one entry of `media` (see docs/scene-format.md): `homogeneous` boxes and `vdb` grids.
+/// `index` names unnamed media; a relative `file` resolves against `base_dir`. Grid files are
+/// loaded here, so load errors are input errors naming the file and the JSON path.
+Medium parse_medium(const JsonNode& node, size_t index, const std::string& base_dir = "");
 
 }  // namespace kasumi

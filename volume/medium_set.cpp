@@ -8,8 +8,8 @@ namespace kasumi {
 
 namespace {
 
-const HomogeneousMedium& homogeneous(const Medium& m) {
-    return std::get<HomogeneousMedium>(m.model);
+const HomogeneousMedium* homogeneous(const Medium& m) {
+    return std::get_if<HomogeneousMedium>(&m.model);
 }
 
 /// The part of [ray.t_min, ray.t_max] inside the medium's bounds.
@@ -19,29 +19,97 @@ std::optional<std::pair<float, float>> overlap(const HomogeneousMedium& m, const
     return m.bounds->clip(ray);
 }
 
+Rgb sigma_s_of(const Medium& medium) {
+    if (const HomogeneousMedium* h = homogeneous(medium))
+        return h->sigma_s;
+    return std::get<VdbMedium>(medium.model).sigma_s_per_density;
+}
+
+const PhaseFunction& phase_of(const Medium& medium) {
+    if (const HomogeneousMedium* h = homogeneous(medium))
+        return h->phase;
+    return std::get<VdbMedium>(medium.model).phase;
+}
+
+float grid_density(const VdbMedium& m, const Vec3& p) {
+    return m.grid->density(Vec3(m.world_to_index * Vec4(p, 1.0f)));
+}
+
+/// sigma_s of medium k at p (constant for homogeneous media in the segment's mask).
+Rgb sigma_s_at(const Medium& medium, const Vec3& p) {
+    if (const HomogeneousMedium* h = homogeneous(medium))
+        return h->sigma_s;
+    const VdbMedium& v = std::get<VdbMedium>(medium.model);
+    return v.sigma_s_per_density * grid_density(v, p);
+}
+
+/// One medium's stretches along the ray, tagged with its bit, appended to `out`.
+void medium_segments(const Medium& medium, uint32_t bit, const Ray& ray,
+                     std::vector<MajorantSegment>& out) {
+    if (const HomogeneousMedium* h = homogeneous(medium)) {
+        const Rgb sigma_t = h->sigma_t();
+        const auto span = overlap(*h, ray);
+        if (span && span->second > span->first && max_component(sigma_t) > 0.0f)
+            out.push_back({span->first, span->second, sigma_t, sigma_t, bit});
+        return;
+    }
+    const VdbMedium& v = std::get<VdbMedium>(medium.model);
+    const Rgb sigma_t = v.sigma_t_per_density();
+    if (v.grid->empty() || !(max_component(sigma_t) > 0.0f))
+        return;
+    const auto span = v.bounds_world.clip(ray);
+    if (!span)
+        return;
+    thread_local std::vector<BrickSpan> bricks;
+    bricks.clear();
+    const Vec3 o_index(v.world_to_index * Vec4(ray.origin, 1.0f));
+    const Vec3 d_index(v.world_to_index * Vec4(ray.direction, 0.0f));
+    v.grid->bricks_along(o_index, d_index, span->first, span->second, bricks);
+    for (const BrickSpan& b : bricks)
+        out.push_back({b.t0, b.t1, sigma_t * b.density_max, sigma_t * b.density_min, bit});
+}
+
 }  // namespace
 
 MediumSet::MediumSet(std::vector<Medium> media) : m_media(std::move(media)) {
     KASUMI_CHECK(m_media.size() <= kMaxMedia);
+    m_all_homogeneous = std::all_of(m_media.begin(), m_media.end(),
+                                    [](const Medium& m) { return homogeneous(m) != nullptr; });
+    for (const Medium& m : m_media) {
+        const HomogeneousMedium* h = homogeneous(m);
+        const Rgb t = h ? h->sigma_t() : std::get<VdbMedium>(m.model).sigma_t_per_density();
+        if (!(t.r == t.g && t.g == t.b))
+            m_grey_extinction = false;
+    }
 }
 
 bool MediumSet::scatters() const {
-    return std::any_of(m_media.begin(), m_media.end(), [](const Medium& m) {
-        return max_component(homogeneous(m).sigma_s) > 0.0f;
-    });
+    return std::any_of(m_media.begin(), m_media.end(),
+                       [](const Medium& m) { return max_component(sigma_s_of(m)) > 0.0f; });
+}
+
+float MediumSet::smallest_voxel_m() const {
+    float size = kInfinity;
+    for (const Medium& m : m_media) {
+        if (const auto* v = std::get_if<VdbMedium>(&m.model))
+            size = std::min(size, v->voxel_size_m);
+    }
+    return size;
 }
 
 Rgb MediumSet::optical_depth(const Ray& ray) const {
     Rgb tau(0.0f);
     for (const Medium& medium : m_media) {
-        const HomogeneousMedium& m = homogeneous(medium);
-        const auto span = overlap(m, ray);
+        const HomogeneousMedium* m = homogeneous(medium);
+        if (m == nullptr)
+            continue;
+        const auto span = overlap(*m, ray);
         if (!span)
             continue;
         const float length = span->second - span->first;
         // An unbounded medium along an infinite ray has infinite depth; exp(-inf) = 0 is right,
         // but 0 * inf would be NaN for a clear channel.
-        const Rgb sigma_t = m.sigma_t();
+        const Rgb sigma_t = m->sigma_t();
         for (int c = 0; c < 3; ++c) {
             if (sigma_t[c] > 0.0f)
                 tau[c] += sigma_t[c] * length;
@@ -56,7 +124,10 @@ void MediumSet::intervals(const Ray& ray, std::vector<MediumInterval>& out) cons
     float cuts[2 * kMaxMedia];
     size_t n_cuts = 0;
     for (const Medium& medium : m_media) {
-        const auto span = overlap(homogeneous(medium), ray);
+        const HomogeneousMedium* m = homogeneous(medium);
+        if (m == nullptr)
+            continue;
+        const auto span = overlap(*m, ray);
         if (!span)
             continue;
         cuts[n_cuts++] = span->first;
@@ -73,13 +144,13 @@ void MediumSet::intervals(const Ray& ray, std::vector<MediumInterval>& out) cons
         interval.t1 = t1;
         bool inside_any = false;
         for (uint32_t k = 0; k < m_media.size(); ++k) {
-            const HomogeneousMedium& m = homogeneous(m_media[k]);
-            if (m.bounds && !m.bounds->contains(mid))
+            const HomogeneousMedium* m = homogeneous(m_media[k]);
+            if (m == nullptr || (m->bounds && !m->bounds->contains(mid)))
                 continue;
             inside_any = true;
-            interval.sigma_t += m.sigma_t();
-            interval.sigma_s += m.sigma_s;
-            if (max_component(m.sigma_s) > 0.0f)
+            interval.sigma_t += m->sigma_t();
+            interval.sigma_s += m->sigma_s;
+            if (max_component(m->sigma_s) > 0.0f)
                 interval.scattering_mask |= 1u << k;
         }
         if (inside_any)
@@ -90,10 +161,138 @@ void MediumSet::intervals(const Ray& ray, std::vector<MediumInterval>& out) cons
 Rgb MediumSet::scattering(const MediumInterval& interval, float mu) const {
     Rgb result(0.0f);
     for (uint32_t mask = interval.scattering_mask; mask != 0; mask &= mask - 1) {
-        const HomogeneousMedium& m = homogeneous(m_media[__builtin_ctz(mask)]);
-        result += m.sigma_s * eval(m.phase, mu);
+        const Medium& m = m_media[__builtin_ctz(mask)];
+        result += sigma_s_of(m) * eval(phase_of(m), mu);
     }
     return result;
+}
+
+void MediumSet::majorants(const Ray& ray, std::vector<MajorantSegment>& out) const {
+    out.clear();
+    if (m_media.size() == 1) {
+        medium_segments(m_media[0], 1u, ray, out);
+        return;
+    }
+    thread_local std::vector<MajorantSegment> all;
+    all.clear();
+    for (uint32_t k = 0; k < m_media.size(); ++k)
+        medium_segments(m_media[k], 1u << k, ray, all);
+    if (all.empty())
+        return;
+    // Sweep the segment ends in order; each medium's own segments are disjoint, so at most one
+    // per medium is active and the sums are recomputed per elementary stretch (no drift).
+    struct Event {
+        float t;
+        int32_t segment;  ///< ~index for an end, index for a start
+    };
+    thread_local std::vector<Event> events;
+    events.clear();
+    for (int32_t i = 0; i < static_cast<int32_t>(all.size()); ++i) {
+        events.push_back({all[i].t0, i});
+        events.push_back({all[i].t1, ~i});
+    }
+    std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
+        return a.t < b.t || (a.t == b.t && a.segment < b.segment);  // ends first
+    });
+    int32_t active[kMaxMedia];
+    std::fill(active, active + kMaxMedia, -1);
+    uint32_t mask = 0;
+    for (size_t e = 0; e < events.size(); ++e) {
+        const Event& ev = events[e];
+        const int32_t i = ev.segment >= 0 ? ev.segment : ~ev.segment;
+        const int k = __builtin_ctz(all[i].media_mask);
+        if (ev.segment >= 0) {
+            active[k] = i;
+            mask |= 1u << k;
+        } else {
+            active[k] = -1;
+            mask &= ~(1u << k);
+        }
+        if (mask == 0 || e + 1 == events.size() || !(events[e + 1].t > ev.t))
+            continue;
+        MajorantSegment s{ev.t, events[e + 1].t, Rgb(0.0f), Rgb(0.0f), mask};
+        for (uint32_t m = mask; m != 0; m &= m - 1) {
+            const MajorantSegment& a = all[active[__builtin_ctz(m)]];
+            s.sigma_max += a.sigma_max;
+            s.sigma_min += a.sigma_min;
+        }
+        out.push_back(s);
+    }
+}
+
+PointCoefficients MediumSet::coefficients(const Vec3& p, uint32_t mask) const {
+    PointCoefficients c;
+    for (; mask != 0; mask &= mask - 1) {
+        const Medium& medium = m_media[__builtin_ctz(mask)];
+        if (const HomogeneousMedium* h = homogeneous(medium)) {
+            c.sigma_t += h->sigma_t();
+            c.sigma_s += h->sigma_s;
+        } else {
+            const VdbMedium& v = std::get<VdbMedium>(medium.model);
+            const float d = grid_density(v, p);
+            c.sigma_t += v.sigma_t_per_density() * d;
+            c.sigma_s += v.sigma_s_per_density * d;
+        }
+    }
+    return c;
+}
+
+Rgb MediumSet::scattering(const Vec3& p, uint32_t mask, float mu) const {
+    Rgb result(0.0f);
+    for (; mask != 0; mask &= mask - 1) {
+        const Medium& m = m_media[__builtin_ctz(mask)];
+        const Rgb s = sigma_s_at(m, p);
+        if (!is_black(s))
+            result += s * eval(phase_of(m), mu);
+    }
+    return result;
+}
+
+MixtureSample MediumSet::sample_scattering(const Vec3& p, uint32_t mask, const Vec3& wo,
+                                           float u_pick, Vec2 u) const {
+    MixtureSample out;
+    Rgb sigma_s[kMaxMedia];
+    float weight[kMaxMedia];
+    float total = 0.0f;
+    for (uint32_t m = mask; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        sigma_s[k] = sigma_s_at(m_media[k], p);
+        weight[k] = std::max(luminance(sigma_s[k]), 0.0f);
+        total += weight[k];
+    }
+    if (!(total > 0.0f))
+        return out;
+    float target = u_pick * total;
+    int chosen = -1;
+    for (uint32_t m = mask; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        if (weight[k] == 0.0f)
+            continue;
+        chosen = k;
+        if (target < weight[k])
+            break;
+        target -= weight[k];
+    }
+    const PhaseSample ps = sample(phase_of(m_media[chosen]), wo, u);
+    if (!(ps.pdf > 0.0f))
+        return out;
+    out.wi = ps.wi;
+    if ((mask & (mask - 1)) == 0) {
+        out.scattering = sigma_s[chosen] * ps.value;
+        out.pdf = ps.pdf;
+        return out;
+    }
+    // Several media: the direction's density is the pick-weighted mixture of their pdfs.
+    const float mu = scattering_cosine(wo, ps.wi);
+    for (uint32_t m = mask; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        if (weight[k] == 0.0f)
+            continue;
+        const PhaseFunction& phase = phase_of(m_media[k]);
+        out.scattering += sigma_s[k] * eval(phase, mu);
+        out.pdf += weight[k] / total * pdf(phase, mu);
+    }
+    return out;
 }
 
 }  // namespace kasumi

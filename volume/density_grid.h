@@ -1,0 +1,100 @@
+#pragma once
+/// Our hot-loop copy of a sparse density grid: the non-zero region of a voxel grid stored as
+/// dense 8³ bricks, each with a one-voxel apron so a trilinear lookup reads one brick, and with
+/// the exact maximum and minimum of the interpolated density per brick (majorant and minorant
+/// for the trackers). Empty bricks take no voxel storage and are skipped by the brick DDA.
+///
+/// Index space follows OpenVDB: voxel (i, j, k) holds its value at the index-space point
+/// (i, j, k); between voxel centres the density is trilinear. Voxels never set are 0.
+#include "core/math.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace kasumi {
+
+using IVec3 = glm::ivec3;
+
+/// One stretch [t0, t1] of a ray inside one non-empty brick, with bounds of the density there.
+struct BrickSpan {
+    float t0 = 0.0f;
+    float t1 = 0.0f;
+    float density_max = 0.0f;  ///< >= every trilinear density value inside the brick
+    float density_min = 0.0f;  ///< <= every trilinear density value inside the brick
+};
+
+class DensityGrid {
+  public:
+    static constexpr int kBrick = 8;            ///< cells per brick edge
+    static constexpr int kStored = kBrick + 1;  ///< voxels per stored brick edge (with apron)
+    static constexpr int kBrickVoxels = kStored * kStored * kStored;
+
+    DensityGrid() = default;
+    /// An empty grid able to hold voxels with indices in [index_min, index_max] (inclusive).
+    DensityGrid(IVec3 index_min, IVec3 index_max);
+
+    /// Sets voxel `index` (within the constructor's box) to `value`. Build time only.
+    void set(IVec3 index, float value);
+    /// Computes the per-brick bounds; call once after the last `set`.
+    void finalize();
+
+    /// Trilinear density at an index-space point; 0 outside the stored region. Never throws.
+    float density(const Vec3& p_index) const {
+        const Vec3 q = p_index - m_origin_f;
+        const Vec3 qf = glm::floor(q);
+        if (!(qf.x >= 0.0f && qf.y >= 0.0f && qf.z >= 0.0f && qf.x < m_cells_f.x &&
+              qf.y < m_cells_f.y && qf.z < m_cells_f.z))
+            return 0.0f;
+        const IVec3 c(qf);
+        const int32_t brick = m_brick_index[brick_slot(c >> 3)];
+        if (brick < 0)
+            return 0.0f;
+        const Vec3 f = q - qf;
+        const IVec3 l = c & (kBrick - 1);
+        const float* v = &m_voxels[static_cast<size_t>(brick) * kBrickVoxels] +
+                         (l.x + kStored * (l.y + kStored * l.z));
+        constexpr int dy = kStored, dz = kStored * kStored;
+        const float x00 = v[0] + f.x * (v[1] - v[0]);
+        const float x10 = v[dy] + f.x * (v[dy + 1] - v[dy]);
+        const float x01 = v[dz] + f.x * (v[dz + 1] - v[dz]);
+        const float x11 = v[dz + dy] + f.x * (v[dz + dy + 1] - v[dz + dy]);
+        const float y0 = x00 + f.y * (x10 - x00);
+        const float y1 = x01 + f.y * (x11 - x01);
+        return y0 + f.z * (y1 - y0);
+    }
+
+    /// Appends, in order, the spans of the index-space ray o + t d, t in [t0, t1], that lie in
+    /// non-empty bricks (3D DDA over bricks, Amanatides & Woo 1987). t keeps the caller's units.
+    void bricks_along(const Vec3& o_index, const Vec3& d_index, float t0, float t1,
+                      std::vector<BrickSpan>& out) const;
+
+    bool empty() const { return m_allocated == 0; }
+    /// Largest density anywhere.
+    float max_density() const { return m_max_density; }
+    size_t allocated_bricks() const { return m_allocated; }
+    size_t total_bricks() const { return m_brick_index.size(); }
+    /// Index-space box that can hold non-zero density: [lower, upper].
+    Vec3 lower() const { return m_origin_f; }
+    Vec3 upper() const { return m_origin_f + Vec3(m_bricks * kBrick); }
+
+  private:
+    size_t brick_slot(IVec3 b) const {
+        return static_cast<size_t>(b.x) +
+               static_cast<size_t>(m_bricks.x) *
+                   (static_cast<size_t>(b.y) + static_cast<size_t>(m_bricks.y) * b.z);
+    }
+    float* brick_voxels(IVec3 b);
+
+    IVec3 m_origin{0};  ///< index of the lower corner of brick (0, 0, 0)
+    Vec3 m_origin_f{0.0f};
+    IVec3 m_bricks{0};  ///< bricks per axis
+    Vec3 m_cells_f{0.0f};
+    std::vector<int32_t> m_brick_index;  ///< per brick slot: storage index, or -1 (all zero)
+    std::vector<float> m_voxels;         ///< kBrickVoxels floats per allocated brick
+    std::vector<float> m_brick_max;      ///< per brick slot
+    std::vector<float> m_brick_min;      ///< per brick slot
+    size_t m_allocated = 0;
+    float m_max_density = 0.0f;
+};
+
+}  // namespace kasumi

@@ -1,0 +1,49 @@
+#pragma once
+/// Transmittance estimators over a MediumSet and free-flight distance sampling, all walking the
+/// per-brick majorants the media report along a ray (no global majorant). See docs/volumes.md.
+#include "core/rng.h"
+#include "volume/in_scattering.h"
+#include "volume/medium_set.h"
+
+#include <optional>
+#include <string>
+
+namespace kasumi {
+
+/// Scene-file names: "march", "delta", "ratio", "residual-ratio".
+const char* estimator_name(Estimator estimator);
+std::optional<Estimator> estimator_from_name(const std::string& name);
+
+/// The march step in metres: step_voxels times the finest grid's voxel when both are given,
+/// else step_m.
+float march_step_m(const MediumSet& media, const VolumeSettings& settings);
+
+/// An estimate of the transmittance exp(-integral of sigma_t) over [ray.t_min, ray.t_max] per
+/// channel, in [0, 1]. Unbiased for Delta, Ratio, ResidualRatio; March (step `step_m`, offset
+/// jittered per call) is biased by O(step²) where the density is smooth. Never throws.
+Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator estimator,
+                           float step_m, Pcg32& rng, VolumeCounters& counters);
+
+/// The outcome of free-flight sampling along a ray.
+struct FreeFlight {
+    bool scattered =
+        false;  ///< a real scattering collision at t; else the path left [t_min, t_max]
+    float t = 0.0f;
+    Vec3 position{0.0f};
+    uint32_t media_mask = 0;
+    /// Factor to multiply into the path throughput. Expectations: over scattering outcomes,
+    /// weight * F(t) estimates the integral of T(t) F(t) dt for any F that vanishes where
+    /// sigma_s does (F carries sigma_s, e.g. sigma_s p L); over escapes, weight estimates T.
+    Rgb weight{1.0f};
+};
+
+/// Spectral tracking (Kutz et al. 2017, "Spectral and Decomposition Tracking for Rendering
+/// Heterogeneous Volumes", ACM TOG 36(4), §3, absorption folded into the weights): walks
+/// collisions with the scalar (max-channel) majorant of each segment and picks scattering or a
+/// null collision with probabilities proportional to the throughput-weighted sigma_s and
+/// sigma_n = majorant - sigma_t. `throughput` is the path weight so far (it steers the choices).
+/// For grey media and grey throughput this is delta tracking with absorption as a weight.
+FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb& throughput,
+                              Pcg32& rng, VolumeCounters& counters);
+
+}  // namespace kasumi

@@ -1,0 +1,40 @@
+#pragma once
+/// Reading and writing OpenVDB float grids. The OpenVDB headers stay inside vdb_read.cpp and
+/// vdb_write.cpp; everything else sees our own DensityGrid.
+#include "core/math.h"
+#include "volume/density_grid.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+struct LoadedGrid {
+    std::shared_ptr<const DensityGrid> grid;
+    glm::dmat4 index_to_world{1.0};  ///< the grid's own (linear) transform
+    std::string grid_name;           ///< the grid actually read
+    uint64_t active_voxels = 0;
+};
+
+/// Reads float grid `grid_name` (empty: "density" if present, else the first float grid) from
+/// `path` into a DensityGrid. Input errors (missing file or grid, not a float grid, a non-linear
+/// transform, a non-zero background, NaN, infinite or negative voxels) throw kasumi::Error
+/// (Input) whose message starts with `context` (e.g. "scene.json: /media/0/file").
+LoadedGrid load_density_grid(const std::string& path, const std::string& grid_name,
+                             const std::string& context);
+
+/// A dense block of voxels: value of voxel origin + (x, y, z) at values[x + nx (y + ny z)].
+struct DenseVoxels {
+    IVec3 origin{0};
+    IVec3 dims{0};
+    std::vector<float> values;
+};
+
+/// Writes `voxels` as an OpenVDB fog volume (float grid `grid_name`, background 0, zero voxels
+/// inactive) with a uniform voxel size in metres and index (0, 0, 0) at `world_offset`. Values
+/// are written as given (tests use this to make invalid grids). Throws Error (Output) on failure.
+void write_fog_volume(const std::string& path, const std::string& grid_name,
+                      const DenseVoxels& voxels, double voxel_size_m, const Vec3& world_offset);
+
+}  // namespace kasumi

@@ -1,0 +1,119 @@
+#include "volume/vdb_io.h"
+
+#include "core/error.h"
+
+#include <openvdb/openvdb.h>
+
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+
+namespace kasumi {
+
+namespace {
+
+void initialize_openvdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+std::string coord_text(const openvdb::Coord& c) {
+    return "(" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " +
+           std::to_string(c.z()) + ")";
+}
+
+openvdb::FloatGrid::Ptr read_float_grid(const std::string& path, const std::string& wanted,
+                                        const std::string& context) {
+    openvdb::io::File file(path);
+    try {
+        file.open(false);
+    } catch (const openvdb::Exception& e) {
+        throw_input_error(context + ": cannot read OpenVDB file " + path + ": " + e.what());
+    }
+    openvdb::GridBase::Ptr base;
+    std::string first_float;
+    for (auto it = file.beginName(); it != file.endName(); ++it) {
+        const openvdb::GridBase::Ptr meta = file.readGridMetadata(it.gridName());
+        if (first_float.empty() && meta->isType<openvdb::FloatGrid>())
+            first_float = it.gridName();
+    }
+    std::string name = wanted;
+    if (name.empty())
+        name = file.hasGrid("density") ? "density" : first_float;
+    if (name.empty() || !file.hasGrid(name)) {
+        std::string names;
+        for (auto it = file.beginName(); it != file.endName(); ++it)
+            names += (names.empty() ? "" : ", ") + it.gridName();
+        throw_input_error(context + ": " + path + " has no " +
+                          (name.empty() ? "float grid" : "grid \"" + name + "\"") +
+                          " (grids: " + (names.empty() ? "none" : names) + ")");
+    }
+    base = file.readGrid(name);
+    file.close();
+    auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    if (!grid)
+        throw_input_error(context + ": " + path + ": grid \"" + name + "\" is not a float grid");
+    return grid;
+}
+
+}  // namespace
+
+LoadedGrid load_density_grid(const std::string& path, const std::string& grid_name,
+                             const std::string& context) {
+    initialize_openvdb();
+    if (!std::filesystem::is_regular_file(path))
+        throw_input_error(context + ": no such file: " + path);
+    openvdb::FloatGrid::Ptr grid;
+    try {
+        grid = read_float_grid(path, grid_name, context);
+    } catch (const openvdb::Exception& e) {
+        throw_input_error(context + ": " + path + ": " + e.what());
+    }
+    const std::string where = context + ": " + path + " grid \"" + grid->getName() + "\"";
+    if (!grid->transform().isLinear())
+        throw_input_error(where + ": only linear (affine) transforms are supported");
+    if (grid->background() != 0.0f)
+        throw_input_error(where + ": background is " + std::to_string(grid->background()) +
+                          ", must be 0 (a fog volume)");
+
+    LoadedGrid loaded;
+    loaded.grid_name = grid->getName();
+    const openvdb::Mat4d m = grid->transform().baseMap()->getAffineMap()->getMat4();
+    // OpenVDB maps row vectors (world = index * M); glm maps column vectors, so g[i][j] = M(i, j).
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            loaded.index_to_world[i][j] = m(i, j);
+
+    loaded.active_voxels = grid->activeVoxelCount();
+    if (loaded.active_voxels == 0) {
+        loaded.grid = std::make_shared<DensityGrid>();
+        return loaded;
+    }
+    const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+    auto dense = std::make_shared<DensityGrid>(IVec3(box.min().x(), box.min().y(), box.min().z()),
+                                               IVec3(box.max().x(), box.max().y(), box.max().z()));
+    auto check = [&](float v, const openvdb::Coord& c) {
+        if (!std::isfinite(v) || v < 0.0f) {
+            throw_input_error(where + ": voxel " + coord_text(c) + " = " + std::to_string(v) +
+                              ": densities must be finite and >= 0");
+        }
+    };
+    for (auto it = grid->cbeginValueOn(); it; ++it) {
+        const float v = *it;
+        if (it.isVoxelValue()) {
+            check(v, it.getCoord());
+            dense->set(IVec3(it.getCoord().x(), it.getCoord().y(), it.getCoord().z()), v);
+        } else {
+            const openvdb::CoordBBox tile = it.getBoundingBox();
+            check(v, tile.min());
+            for (auto c = tile.begin(); c; ++c)
+                dense->set(IVec3((*c).x(), (*c).y(), (*c).z()), v);
+        }
+    }
+    // Inactive voxels read as the background, 0; inactive values stored in leaves are ignored.
+    dense->finalize();
+    loaded.grid = std::move(dense);
+    return loaded;
+}
+
+}  // namespace kasumi

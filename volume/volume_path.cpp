@@ -1,0 +1,137 @@
+#include "volume/volume_path.h"
+
+#include "volume/march_walk.h"
+#include "volume/transmittance.h"
+
+namespace kasumi {
+
+namespace {
+
+/// The marched single scattering stops once every channel's camera transmittance is below this.
+constexpr float kTailTransmittance = 1e-6f;
+/// Paths play Russian roulette from this many scattering events on.
+constexpr int kRouletteDepth = 3;
+
+bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight& in,
+             VolumeCounters& counters) {
+    if (occlusion == nullptr)
+        return false;
+    ++counters.shadow_rays;
+    return in.distance >= kInfinity ? occlusion->occluded_direction(x, in.wi)
+                                    : occlusion->occluded(x, in.light_position);
+}
+
+VolumeResult march_single(const MediumSet& media, const std::vector<Light>& lights,
+                          const OcclusionQuery* occlusion, const Ray& ray,
+                          const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters) {
+    thread_local std::vector<MajorantSegment> segments;
+    media.majorants(ray, segments);
+    const float h = march_step_m(media, settings);
+    const Vec3 wo = -ray.direction;
+    VolumeResult result;
+    // Each node stands for a step h: with the offset uniform per ray, sum h f(t_i) is an
+    // unbiased estimate of the integral of f for a given T; T itself is the trapezoid's.
+    const glm::dvec3 tau =
+        march_walk(media, ray, h, rng.next_float(), segments, false, counters,
+                   [&](float, const Vec3& x, const PointCoefficients& k, uint32_t mask,
+                       const glm::dvec3& depth) {
+                       const Rgb t_camera(glm::exp(-depth));
+                       if (max_component(t_camera) < kTailTransmittance)
+                           return false;
+                       if (!is_black(k.sigma_s)) {
+                           ++counters.steps;
+                           result.radiance +=
+                               (h * t_camera) * scattered_direct(media, lights, occlusion, x, mask,
+                                                                 wo, settings, rng, counters);
+                       }
+                       return true;
+                   });
+    result.transmittance = Rgb(glm::exp(-tau));
+    return result;
+}
+
+Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
+                  const OcclusionQuery* occlusion, const PathEnvironment* environment,
+                  const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
+                  VolumeCounters& counters) {
+    Rgb radiance(0.0f), throughput(1.0f);
+    Ray ray = camera_segment;
+    for (int depth = 0;;) {
+        const FreeFlight flight = sample_free_flight(media, ray, throughput, rng, counters);
+        throughput *= flight.weight;
+        if (!flight.scattered) {
+            // The camera segment's own escape is composited by the caller (T * L_surface).
+            if (depth > 0 && environment != nullptr && !is_black(throughput))
+                radiance += throughput * environment->radiance(ray, rng);
+            break;
+        }
+        ++counters.scattering_events;
+        const Vec3 wo = -ray.direction;
+        radiance += throughput * scattered_direct(media, lights, occlusion, flight.position,
+                                                  flight.media_mask, wo, settings, rng, counters);
+        if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth)
+            break;
+        const float u_pick = rng.next_float();
+        const MixtureSample next = media.sample_scattering(flight.position, flight.media_mask, wo,
+                                                           u_pick, rng.next_vec2());
+        if (!(next.pdf > 0.0f))
+            break;
+        throughput *= next.scattering / next.pdf;
+        if (depth >= kRouletteDepth) {
+            const float survive = std::min(1.0f, max_component(throughput));
+            if (!(rng.next_float() < survive))
+                break;
+            throughput /= survive;
+        }
+        ray = Ray{flight.position, next.wi, 0.0f, kInfinity};
+        if (environment != nullptr)
+            ray.t_max = environment->surface_distance(ray);
+    }
+    return radiance;
+}
+
+}  // namespace
+
+Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
+                     const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
+                     const Vec3& wo, const VolumeSettings& settings, Pcg32& rng,
+                     VolumeCounters& counters) {
+    const float step = march_step_m(media, settings);
+    Rgb total(0.0f);
+    for (const Light& light : lights) {
+        const IncidentLight in = incident_light(light, x);
+        if (is_black(in.irradiance))
+            continue;
+        const Rgb f = media.scattering(x, media_mask, scattering_cosine(wo, in.wi));
+        ++counters.density_lookups;
+        if (is_black(f) || blocked(occlusion, x, in, counters))
+            continue;
+        const Ray shadow{x, in.wi, 0.0f, in.distance >= kInfinity ? kInfinity : in.distance};
+        total += f * in.irradiance *
+                 estimate_transmittance(media, shadow, settings.estimator, step, rng, counters);
+    }
+    return total;
+}
+
+VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& lights,
+                             const OcclusionQuery* occlusion, const PathEnvironment* environment,
+                             const Ray& ray, const VolumeSettings& settings, bool in_scatter,
+                             Pcg32& rng, VolumeCounters& counters) {
+    const bool marched_single =
+        settings.estimator == Estimator::March && settings.integrator == VolumeIntegrator::Single;
+    if (in_scatter && marched_single) {
+        if (media.all_homogeneous())
+            return integrate_volume(media, lights, occlusion, ray, settings, true, rng, counters);
+        return march_single(media, lights, occlusion, ray, settings, rng, counters);
+    }
+    VolumeResult result;
+    result.transmittance = estimate_transmittance(media, ray, settings.estimator,
+                                                  march_step_m(media, settings), rng, counters);
+    if (in_scatter) {
+        result.radiance =
+            path_radiance(media, lights, occlusion, environment, ray, settings, rng, counters);
+    }
+    return result;
+}
+
+}  // namespace kasumi
