@@ -167,7 +167,7 @@ void run_eval(const std::vector<std::string>& args) {
     std::printf("theta_deg,value\n");
     for (const double t : angles)
         std::printf("%s,%s\n", number(t).c_str(),
-                    number(eval(p, static_cast<float>(std::cos(t * kPiD / 180.0)))).c_str());
+                    number(eval_precise(p, std::cos(t * kPiD / 180.0))).c_str());
 }
 
 void run_mie(const std::vector<std::string>& args) {
@@ -328,8 +328,7 @@ void run_plot(const std::vector<std::string>& args) {
         labels.push_back(label);
         std::vector<double> values(n);
         for (int i = 0; i < n; ++i) {
-            values[static_cast<size_t>(i)] =
-                eval(p, static_cast<float>(std::cos(kPiD * i / (n - 1))));
+            values[static_cast<size_t>(i)] = eval_precise(p, std::cos(kPiD * i / (n - 1)));
             if (values[static_cast<size_t>(i)] > 0.0)
                 lo = std::min(lo, values[static_cast<size_t>(i)]);
             hi = std::max(hi, values[static_cast<size_t>(i)]);

@@ -8,6 +8,10 @@ float eval(const CornetteShanks& p, float mu) {
     return eval(Draine{p.g, 1.0f}, mu);
 }
 
+double eval_precise(const CornetteShanks& p, double mu) {
+    return eval_precise(Draine{p.g, 1.0f}, mu);
+}
+
 float pdf(const CornetteShanks& p, float mu) {
     return eval(p, mu);
 }

@@ -12,6 +12,8 @@ struct CornetteShanks {
 };
 
 float eval(const CornetteShanks& p, float mu);
+/// p(mu) in double precision; eval() is this value rounded to float.
+double eval_precise(const CornetteShanks& p, double mu);
 float pdf(const CornetteShanks& p, float mu);
 PhaseSample sample(const CornetteShanks& p, const Vec3& wo, Vec2 u);
 float mean_cosine(const CornetteShanks& p);

@@ -13,6 +13,8 @@ struct DoubleHenyeyGreenstein {
 };
 
 float eval(const DoubleHenyeyGreenstein& p, float mu);
+/// p(mu) in double precision; eval() is this value rounded to float.
+double eval_precise(const DoubleHenyeyGreenstein& p, double mu);
 float pdf(const DoubleHenyeyGreenstein& p, float mu);
 /// Picks a lobe with u.x and reuses the rescaled u.x to invert that lobe; pdf per steradian.
 PhaseSample sample(const DoubleHenyeyGreenstein& p, const Vec3& wo, Vec2 u);

@@ -1,6 +1,6 @@
 #include "phase/draine.h"
 
-#include "core/sampling.h"
+#include "phase/henyey_greenstein.h"
 #include "phase/rayleigh.h"
 
 #include <array>
@@ -56,7 +56,7 @@ double scaled_cdf(double g, double alpha, double w0, double w) {
 }  // namespace
 
 double draine_value(double g, double alpha, double mu) {
-    const double s = 1.0 + g * g - 2.0 * g * mu;
+    const double s = hg_denominator(g, mu);
     const double hg = (1.0 - g * g) / (4.0 * kPiD * s * std::sqrt(s));
     return hg * (1.0 + alpha * mu * mu) / (1.0 + alpha * (1.0 + 2.0 * g * g) / 3.0);
 }
@@ -95,8 +95,12 @@ double sample_draine_cosine(double g, double alpha, double u) {
     return sign * std::clamp(mu, -1.0, 1.0);
 }
 
+double eval_precise(const Draine& p, double mu) {
+    return draine_value(p.g, p.alpha, mu);
+}
+
 float eval(const Draine& p, float mu) {
-    return static_cast<float>(draine_value(p.g, p.alpha, mu));
+    return static_cast<float>(eval_precise(p, mu));
 }
 
 float pdf(const Draine& p, float mu) {
@@ -104,11 +108,8 @@ float pdf(const Draine& p, float mu) {
 }
 
 PhaseSample sample(const Draine& p, const Vec3& wo, Vec2 u) {
-    const auto mu = static_cast<float>(sample_draine_cosine(p.g, p.alpha, u.x));
-    // Light arriving along -wi leaves along wo, so mu = dot(-wi, wo): draw -wi about wo.
-    const Vec3 propagation = direction_about(wo, mu, kTwoPi * u.y);
-    const float value = eval(p, mu);
-    return PhaseSample{-propagation, value, value};
+    const double mu = sample_draine_cosine(p.g, p.alpha, u.x);
+    return phase_sample_about(wo, mu, kTwoPi * u.y, eval_precise(p, mu));
 }
 
 float mean_cosine(const Draine& p) {

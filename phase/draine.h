@@ -13,6 +13,8 @@ struct Draine {
 };
 
 float eval(const Draine& p, float mu);
+/// p(mu) in double precision (draine_value); eval() is this value rounded to float.
+double eval_precise(const Draine& p, double mu);
 float pdf(const Draine& p, float mu);
 /// Numerical inversion of the closed-form CDF (exact to ~1e-12); pdf per steradian.
 PhaseSample sample(const Draine& p, const Vec3& wo, Vec2 u);

@@ -7,6 +7,9 @@ namespace kasumi {
 float eval(const Isotropic&, float) {
     return kInv4Pi;
 }
+double eval_precise(const Isotropic&, double) {
+    return 1.0 / (4.0 * kPiD);
+}
 float pdf(const Isotropic&, float) {
     return kInv4Pi;
 }

@@ -1,6 +1,5 @@
 #include "phase/jendersie_deon.h"
 
-#include "core/sampling.h"
 #include "phase/draine.h"
 #include "phase/henyey_greenstein.h"
 
@@ -43,10 +42,15 @@ JendersieDeon make_jendersie_deon(float diameter_um) {
     return JendersieDeon{diameter_um, jendersie_deon_fit(diameter_um)};
 }
 
-float eval(const JendersieDeon& p, float mu) {
+double eval_precise(const JendersieDeon& p, double mu) {
     const JendersieDeonFit& f = p.fit;
-    return (1.0f - f.w_d) * eval(HenyeyGreenstein{f.g_hg}, mu) +
-           f.w_d * eval(Draine{f.g_d, f.alpha}, mu);
+    const double w_d = f.w_d;
+    return (1.0 - w_d) * eval_precise(HenyeyGreenstein{f.g_hg}, mu) +
+           w_d * eval_precise(Draine{f.g_d, f.alpha}, mu);
+}
+
+float eval(const JendersieDeon& p, float mu) {
+    return static_cast<float>(eval_precise(p, mu));
 }
 
 float pdf(const JendersieDeon& p, float mu) {
@@ -55,18 +59,15 @@ float pdf(const JendersieDeon& p, float mu) {
 
 PhaseSample sample(const JendersieDeon& p, const Vec3& wo, Vec2 u) {
     const JendersieDeonFit& f = p.fit;
-    float mu;
+    double mu;
     if (u.x < f.w_d) {
         const float v = std::min(u.x / f.w_d, 1.0f - 0x1p-24f);
-        mu = static_cast<float>(sample_draine_cosine(f.g_d, f.alpha, v));
+        mu = sample_draine_cosine(f.g_d, f.alpha, v);
     } else {
         const float v = std::min((u.x - f.w_d) / (1.0f - f.w_d), 1.0f - 0x1p-24f);
         mu = sample_hg_cosine(f.g_hg, v);
     }
-    // Light arriving along -wi leaves along wo, so mu = dot(-wi, wo): draw -wi about wo.
-    const Vec3 propagation = direction_about(wo, mu, kTwoPi * u.y);
-    const float value = eval(p, mu);
-    return PhaseSample{-propagation, value, value};
+    return phase_sample_about(wo, mu, kTwoPi * u.y, eval_precise(p, mu));
 }
 
 float mean_cosine(const JendersieDeon& p) {

@@ -28,6 +28,8 @@ struct JendersieDeon {
 JendersieDeon make_jendersie_deon(float diameter_um);
 
 float eval(const JendersieDeon& p, float mu);
+/// p(mu) in double precision; eval() is this value rounded to float.
+double eval_precise(const JendersieDeon& p, double mu);
 float pdf(const JendersieDeon& p, float mu);
 /// Picks a lobe with u.x, then inverts that lobe's CDF with the rescaled u.x.
 PhaseSample sample(const JendersieDeon& p, const Vec3& wo, Vec2 u);

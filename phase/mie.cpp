@@ -155,8 +155,12 @@ Mie make_mie_polydisperse(const SizeDistribution& sizes, double wavelength_nm, C
     return Mie{table_from_theta(theta, s11), summary};
 }
 
+double eval_precise(const Mie& p, double mu) {
+    return p.table->eval(mu);
+}
+
 float eval(const Mie& p, float mu) {
-    return static_cast<float>(p.table->eval(mu));
+    return static_cast<float>(eval_precise(p, mu));
 }
 
 float pdf(const Mie& p, float mu) {

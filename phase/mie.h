@@ -49,6 +49,8 @@ Mie make_mie_polydisperse(const SizeDistribution& sizes, double wavelength_nm, C
                           double medium_index, int n_radii = 0);
 
 float eval(const Mie& p, float mu);
+/// The table's p(mu) in double precision; eval() is this value rounded to float.
+double eval_precise(const Mie& p, double mu);
 float pdf(const Mie& p, float mu);
 PhaseSample sample(const Mie& p, const Vec3& wo, Vec2 u);
 /// The tabulated function's mean cosine (within the table's resolution of summary->g).

@@ -25,6 +25,18 @@ using PhaseFunction = std::variant<Isotropic, HenyeyGreenstein, Rayleigh, Double
 inline float eval(const PhaseFunction& p, float mu) {
     return std::visit([mu](const auto& model) { return eval(model, mu); }, p);
 }
+/// p(mu) per steradian with mu in double precision, for quadrature, tables and plots. Near
+/// mu = ±1 float spacing (6e-8) is wider than the forward peak of |g| >= 0.999 (width
+/// ~(1 - |g|)²), so only this path integrates to 1 there; eval(p, float mu) is its value at the
+/// float mu, rounded to float, and stays the renderer's path.
+inline double eval_precise(const PhaseFunction& p, double mu) {
+    return std::visit([mu](const auto& model) { return eval_precise(model, mu); }, p);
+}
+/// The sampling density in double precision. Every model samples exactly (pdf == eval, which
+/// validate_phase checks on the float path), so this is eval_precise.
+inline double pdf_precise(const PhaseFunction& p, double mu) {
+    return eval_precise(p, mu);
+}
 inline float pdf(const PhaseFunction& p, float mu) {
     return std::visit([mu](const auto& model) { return pdf(model, mu); }, p);
 }

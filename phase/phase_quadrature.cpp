@@ -27,7 +27,7 @@ double simpson(const std::function<double(double)>& f, double a, double b, doubl
 }  // namespace
 
 double integrate_mu(const std::function<double(double)>& f, double a, double b, double tolerance,
-                    double relative) {
+                    double relative, const std::vector<double>& breaks) {
     // Break points at 1 - |mu| = 2·10^{-k/2}: each panel then sees at most a factor ~3 change
     // in the distance to the pole, where HG-like peaks vary.
     std::vector<double> edges = {a, b};
@@ -42,6 +42,9 @@ double integrate_mu(const std::function<double(double)>& f, double a, double b, 
         if (e > a && e < b)
             edges.push_back(e);
     }
+    for (const double e : breaks)
+        if (e > a && e < b)
+            edges.push_back(e);
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     const double panel_tolerance = tolerance / static_cast<double>(edges.size());

@@ -121,18 +121,9 @@ PhaseTable read_phase_table_csv(const std::string& path) {
     return PhaseTable::from_theta_deg(theta, value, path);
 }
 
-}  // namespace kasumi
-
-#include "core/sampling.h"
-
-namespace kasumi {
-
 PhaseSample sample_phase_table(const PhaseTable& table, const Vec3& wo, Vec2 u) {
-    const auto mu = static_cast<float>(table.sample_cosine(u.x));
-    // Light arriving along -wi leaves along wo, so mu = dot(-wi, wo): draw -wi about wo.
-    const Vec3 propagation = direction_about(wo, mu, kTwoPi * u.y);
-    const auto value = static_cast<float>(table.eval(mu));
-    return PhaseSample{-propagation, value, value};
+    const double mu = table.sample_cosine(u.x);
+    return phase_sample_about(wo, mu, kTwoPi * u.y, table.eval(mu));
 }
 
 }  // namespace kasumi

@@ -39,10 +39,6 @@ class PhaseTable {
 /// Reads a CSV file of `theta_deg,value` rows (a header line is allowed, `#` comments skipped).
 PhaseTable read_phase_table_csv(const std::string& path);
 
-}  // namespace kasumi
-
-namespace kasumi {
-
 /// Samples a direction from a table: wi from the exact CDF inverse in mu, azimuth uniform.
 /// value == pdf == table.eval(mu) per steradian.
 PhaseSample sample_phase_table(const PhaseTable& table, const Vec3& wo, Vec2 u);

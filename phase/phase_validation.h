@@ -25,14 +25,14 @@ struct ValidationOptions {
     int samples = 1000000;       ///< samples for the chi-square and agreement checks
     double significance = 0.01;  ///< chi-square false-failure rate (before Šidák correction)
     int n_tests = 1;             ///< chi-square tests run together (Šidák correction)
-    double normalisation_tolerance = 1e-6;
+    double normalisation_tolerance = 1e-6;  ///< for the normalisation and the mean cosine
 };
 
 /// Closed-form mean cosine where one exists (not for tabulated or Mie, whose mean cosine is
 /// computed from the table itself).
 std::optional<double> closed_form_mean_cosine(const PhaseFunction& p);
 
-/// 2π ∫ w(mu) p(mu) dmu by adaptive quadrature on the float eval().
+/// 2π ∫ w(mu) p(mu) dmu by adaptive quadrature on eval_precise(), broken at a table's nodes.
 double integrate_phase(const PhaseFunction& p, double (*weight)(double));
 
 struct ChiSquareResult {

@@ -1,7 +1,5 @@
 #include "phase/rayleigh.h"
 
-#include "core/sampling.h"
-
 namespace kasumi {
 
 namespace {
@@ -12,11 +10,14 @@ double rayleigh_gamma(float rho) {
 
 }  // namespace
 
-float eval(const Rayleigh& p, float mu) {
+double eval_precise(const Rayleigh& p, double mu) {
     const double gamma = rayleigh_gamma(p.rho);
-    const double m = mu;
-    return static_cast<float>(3.0 / (16.0 * kPiD * (1.0 + 2.0 * gamma)) *
-                              ((1.0 + 3.0 * gamma) + (1.0 - gamma) * m * m));
+    return 3.0 / (16.0 * kPiD * (1.0 + 2.0 * gamma)) *
+           ((1.0 + 3.0 * gamma) + (1.0 - gamma) * mu * mu);
+}
+
+float eval(const Rayleigh& p, float mu) {
+    return static_cast<float>(eval_precise(p, mu));
 }
 
 float pdf(const Rayleigh& p, float mu) {
@@ -40,11 +41,8 @@ double sample_quadratic_cosine(double a, double u) {
 PhaseSample sample(const Rayleigh& p, const Vec3& wo, Vec2 u) {
     const double gamma = rayleigh_gamma(p.rho);
     const double a = (1.0 - gamma) / (1.0 + 3.0 * gamma);
-    const auto mu = static_cast<float>(sample_quadratic_cosine(a, u.x));
-    // Light arriving along -wi leaves along wo, so mu = dot(-wi, wo): draw -wi about wo.
-    const Vec3 propagation = direction_about(wo, mu, kTwoPi * u.y);
-    const float value = eval(p, mu);
-    return PhaseSample{-propagation, value, value};
+    const double mu = sample_quadratic_cosine(a, u.x);
+    return phase_sample_about(wo, mu, kTwoPi * u.y, eval_precise(p, mu));
 }
 
 float mean_cosine(const Rayleigh&) {

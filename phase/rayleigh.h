@@ -12,6 +12,8 @@ struct Rayleigh {
 };
 
 float eval(const Rayleigh& p, float mu);
+/// p(mu) in double precision; eval() is this value rounded to float.
+double eval_precise(const Rayleigh& p, double mu);
 float pdf(const Rayleigh& p, float mu);
 /// Exact inversion of the cumulative distribution (a cubic in mu); pdf per steradian.
 PhaseSample sample(const Rayleigh& p, const Vec3& wo, Vec2 u);

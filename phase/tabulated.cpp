@@ -2,8 +2,12 @@
 
 namespace kasumi {
 
+double eval_precise(const Tabulated& p, double mu) {
+    return p.table->eval(mu);
+}
+
 float eval(const Tabulated& p, float mu) {
-    return static_cast<float>(p.table->eval(mu));
+    return static_cast<float>(eval_precise(p, mu));
 }
 
 float pdf(const Tabulated& p, float mu) {

@@ -15,6 +15,8 @@ struct Tabulated {
 };
 
 float eval(const Tabulated& p, float mu);
+/// The table's p(mu) in double precision; eval() is this value rounded to float.
+double eval_precise(const Tabulated& p, double mu);
 float pdf(const Tabulated& p, float mu);
 PhaseSample sample(const Tabulated& p, const Vec3& wo, Vec2 u);
 float mean_cosine(const Tabulated& p);

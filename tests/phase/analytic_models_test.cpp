@@ -2,6 +2,8 @@
 #include "phase/phase_function.h"
 #include "phase/phase_quadrature.h"
 
+#include "core/rng.h"
+
 #include <gtest/gtest.h>
 
 namespace kasumi {
@@ -40,7 +42,7 @@ TEST(CornetteShanks, EqualsDraineWithAlphaOneAndHasItsMeanCosine) {
 
 TEST(Draine, NormalisedInDoublePrecisionAtExtremeG) {
     // Float mu cannot resolve the g = 0.9999 peak (width ~1e-8 in mu); the double-precision
-    // form is normalised to 1e-6 there, which is what the float API samples.
+    // form (eval_precise) is normalised to 1e-6 there.
     for (const double g : {-0.9999, -0.999, 0.0, 0.999, 0.9999}) {
         for (const double alpha : {0.0, 1.0, 30.0}) {
             const double total = 2.0 * kPiD *
@@ -80,6 +82,52 @@ TEST(HenyeyGreenstein, ExtremeGStaysFiniteAtThePoles) {
     }
 }
 
+TEST(HenyeyGreenstein, PrecisePeakHasNoCancellationForEitherSign) {
+    // p(±1) = (1 ± g) / (4π (1 ∓ g)²); the textbook 1 + g² - 2 g mu loses ~1e-8 relative here.
+    for (const float g : {-0.9999f, 0.9999f}) {
+        const double gd = g, s = g > 0.0f ? 1.0 : -1.0;
+        const double peak = (1.0 + s * gd) / (4.0 * kPiD * (1.0 - s * gd) * (1.0 - s * gd));
+        EXPECT_NEAR(eval_precise(HenyeyGreenstein{g}, s), peak, 1e-13 * peak) << g;
+        // Just inside the pole, where float mu cannot go: 1 - |mu| = 1e-9.
+        const double mu = s * (1.0 - 1e-9);
+        const double gap = 1.0 - s * mu;  // exact (Sterbenz), unlike the literal 1e-9
+        const double d = (1.0 - s * gd) * (1.0 - s * gd) + 2.0 * s * gd * gap;
+        const double expected = (1.0 - gd * gd) / (4.0 * kPiD * d * std::sqrt(d));
+        EXPECT_NEAR(eval_precise(HenyeyGreenstein{g}, mu), expected, 1e-12 * expected) << g;
+    }
+}
+
+TEST(PhaseFunction, FloatEvalIsThePreciseValueRounded) {
+    const std::vector<PhaseFunction> models = {Isotropic{},
+                                               HenyeyGreenstein{0.9999f},
+                                               Rayleigh{0.03f},
+                                               DoubleHenyeyGreenstein{0.9f, -0.4f, 0.6f},
+                                               CornetteShanks{-0.7f},
+                                               Draine{0.5f, 3.0f},
+                                               make_jendersie_deon(20.0f)};
+    for (const PhaseFunction& p : models) {
+        for (const float mu : {-1.0f, -0.3f, 0.0f, 0.7f, 0.999f, 1.0f}) {
+            EXPECT_EQ(eval(p, mu), static_cast<float>(eval_precise(p, mu)))
+                << p.index() << " mu=" << mu;
+        }
+    }
+}
+
+TEST(HenyeyGreenstein, ExtremeGSamplesAreDeflectedNotSnappedToThePole) {
+    // For g = 0.9999 half the mass has 1 - mu < 5e-9, below float spacing of mu: a sampler that
+    // went through a float mu would return wi == -wo (θ = 0) for most samples.
+    const Vec3 wo = glm::normalize(Vec3(0.3f, -0.5f, 0.81f));
+    Pcg32 rng(3u, 5u);
+    int on_pole = 0;
+    for (int i = 0; i < 10000; ++i) {
+        const PhaseSample s = sample(HenyeyGreenstein{0.9999f}, wo, rng.next_vec2());
+        if (glm::length(DVec3(s.wi) + DVec3(wo)) < 1e-6)
+            ++on_pole;
+    }
+    // P(θ < 1e-6) = P(1 - mu < 5e-13) ≈ 2π p(1) 5e-13 ≈ 5e-5: expect ~0.5 of 10^4.
+    EXPECT_LE(on_pole, 5);
+}
+
 TEST(JendersieDeon, BlendsHgAndDraineWithTheFittedParameters) {
     for (const float d : {0.05f, 0.5f, 2.0f, 5.0f, 20.0f, 50.0f}) {
         const JendersieDeon p = make_jendersie_deon(d);
@@ -88,9 +136,11 @@ TEST(JendersieDeon, BlendsHgAndDraineWithTheFittedParameters) {
         EXPECT_LT(std::abs(p.fit.g_hg), 1.0f) << d;
         EXPECT_LT(std::abs(p.fit.g_d), 1.0f) << d;
         for (const float mu : {-1.0f, 0.0f, 0.9f, 1.0f}) {
-            const float expected = (1.0f - p.fit.w_d) * eval(HenyeyGreenstein{p.fit.g_hg}, mu) +
-                                   p.fit.w_d * eval(Draine{p.fit.g_d, p.fit.alpha}, mu);
-            EXPECT_FLOAT_EQ(eval(p, mu), expected);
+            const double w = p.fit.w_d;
+            const double expected = (1.0 - w) * eval_precise(HenyeyGreenstein{p.fit.g_hg}, mu) +
+                                    w * eval_precise(Draine{p.fit.g_d, p.fit.alpha}, mu);
+            EXPECT_NEAR(eval_precise(p, mu), expected, 1e-14 * expected);
+            EXPECT_FLOAT_EQ(eval(p, mu), static_cast<float>(expected));
         }
     }
     // Fog droplets scatter strongly forward.
