@@ -62,33 +62,44 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
     if (!scene.plan().direct_light)
         return radiance;
     for (const Light& light : desc.lights) {
-        const IncidentLight in = incident_light(light, hit.position);
-        if (is_black(in.irradiance))
-            continue;
-        const float cos_theta = glm::dot(ns, in.wi);
-        if (cos_theta <= 0.0f || glm::dot(ng, in.wi) <= 0.0f)
-            continue;
-        const bool to_infinity = in.distance >= kInfinity;
-        const Vec3 origin = offset_ray_origin(hit, in.wi);
-        Rgb t_media(1.0f);
-        if (scene.plan().volume) {
-            VolumeCounters vc;
-            const VolumeSettings& volume = desc.render.volume;
-            t_media = estimate_transmittance(
-                scene.media(), Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance},
-                volume.estimator, march_step_m(scene.media(), volume), rng, vc);
-            if (is_black(t_media))
+        // Delta lights take one exact sample; extended lights `samples` points on the light, one
+        // shadow ray each, combined by the ratio estimator of shadow_sample_weight.
+        const int samples = is_delta(light) ? 1 : light.samples;
+        Rgb reflected(0.0f);
+        float unshadowed = 0.0f;
+        for (int k = 0; k < samples; ++k) {
+            const IncidentLight in = sample_incident(light, hit.position, rng);
+            if (is_black(in.irradiance))
                 continue;
-        }
-        if (scene.occlusion() != nullptr) {
-            ++counters.surface_shadow_rays;
-            const bool blocked = to_infinity
-                                     ? scene.occlusion()->occluded_direction(origin, in.wi)
-                                     : scene.occlusion()->occluded(origin, in.light_position);
-            if (blocked)
+            const float cos_theta = glm::dot(ns, in.wi);
+            if (cos_theta <= 0.0f)
                 continue;
+            unshadowed += luminance(in.irradiance) * cos_theta;
+            if (glm::dot(ng, in.wi) <= 0.0f)
+                continue;
+            const bool to_infinity = in.distance >= kInfinity;
+            const Vec3 origin = offset_ray_origin(hit, in.wi);
+            Rgb t_media(1.0f);
+            if (scene.plan().volume) {
+                VolumeCounters vc;
+                const VolumeSettings& volume = desc.render.volume;
+                t_media = estimate_transmittance(
+                    scene.media(), Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance},
+                    volume.estimator, march_step_m(scene.media(), volume), rng, vc);
+                if (is_black(t_media))
+                    continue;
+            }
+            if (scene.occlusion() != nullptr && light.shadows == ShadowMode::Ray) {
+                ++counters.surface_shadow_rays;
+                const bool blocked = to_infinity
+                                         ? scene.occlusion()->occluded_direction(origin, in.wi)
+                                         : scene.occlusion()->occluded(origin, in.light_position);
+                if (blocked)
+                    continue;
+            }
+            reflected += phong_brdf(material, ns, wo, in.wi) * in.irradiance * cos_theta * t_media;
         }
-        radiance += phong_brdf(material, ns, wo, in.wi) * in.irradiance * cos_theta * t_media;
+        radiance += shadow_sample_weight(light, hit.position, ns, unshadowed) * reflected;
     }
     return radiance;
 }

@@ -15,12 +15,15 @@ constexpr float kTailTransmittance = 1e-6f;
 struct LightContribution {
     Rgb value{0.0f};
     IncidentLight incident;
+    bool casts_shadows = true;
 };
 
+/// Extended lights contribute through one sample of a point on them (an unbiased estimate).
 LightContribution unshadowed(const MediumSet& media, const MediumInterval& interval,
-                             const Light& light, const Vec3& x, const Vec3& wo) {
+                             const Light& light, const Vec3& x, const Vec3& wo, Pcg32& rng) {
     LightContribution c;
-    c.incident = incident_light(light, x);
+    c.incident = sample_incident(light, x, rng);
+    c.casts_shadows = light.shadows == ShadowMode::Ray;
     if (is_black(c.incident.irradiance))
         return c;
     const Rgb scatter = media.scattering(interval, scattering_cosine(wo, c.incident.wi));
@@ -32,10 +35,11 @@ LightContribution unshadowed(const MediumSet& media, const MediumInterval& inter
     return c;
 }
 
-bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight& in,
+bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const LightContribution& c,
              VolumeCounters& counters) {
-    if (occlusion == nullptr)
+    if (occlusion == nullptr || !c.casts_shadows)
         return false;
+    const IncidentLight& in = c.incident;
     ++counters.shadow_rays;
     return in.distance >= kInfinity ? occlusion->occluded_direction(x, in.wi)
                                     : occlusion->occluded(x, in.light_position);
@@ -46,13 +50,13 @@ bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight
 /// to its unshadowed luminance (unbiased; only the visibility is then estimated).
 Rgb source(const MediumSet& media, const MediumInterval& interval,
            const std::vector<const Light*>& lights, const OcclusionQuery* occlusion, const Vec3& x,
-           const Vec3& wo, LightSampling sampling, float u, VolumeCounters& counters) {
+           const Vec3& wo, LightSampling sampling, float u, Pcg32& rng, VolumeCounters& counters) {
     constexpr size_t kMaxStackLights = 16;
     if (sampling == LightSampling::All || lights.size() == 1 || lights.size() > kMaxStackLights) {
         Rgb total(0.0f);
         for (const Light* light : lights) {
-            const LightContribution c = unshadowed(media, interval, *light, x, wo);
-            if (is_black(c.value) || blocked(occlusion, x, c.incident, counters))
+            const LightContribution c = unshadowed(media, interval, *light, x, wo, rng);
+            if (is_black(c.value) || blocked(occlusion, x, c, counters))
                 continue;
             total += c.value;
         }
@@ -62,7 +66,7 @@ Rgb source(const MediumSet& media, const MediumInterval& interval,
     float weights[kMaxStackLights];
     float total_weight = 0.0f;
     for (size_t i = 0; i < lights.size(); ++i) {
-        contributions[i] = unshadowed(media, interval, *lights[i], x, wo);
+        contributions[i] = unshadowed(media, interval, *lights[i], x, wo, rng);
         weights[i] = std::max(luminance(contributions[i].value), 0.0f);
         total_weight += weights[i];
     }
@@ -81,7 +85,7 @@ Rgb source(const MediumSet& media, const MediumInterval& interval,
         target -= weights[i];
     }
     const LightContribution& c = contributions[chosen];
-    if (blocked(occlusion, x, c.incident, counters))
+    if (blocked(occlusion, x, c, counters))
         return Rgb(0.0f);
     return c.value * (total_weight / weights[chosen]);
 }
@@ -143,8 +147,8 @@ Rgb point_light_scattering(const MediumSet& media, const MediumInterval& interva
                 continue;
             ++counters.steps;
             const Vec3 x = ray.at(t);
-            const LightContribution c = unshadowed(media, interval, *point_lights[i], x, wo);
-            if (is_black(c.value) || blocked(occlusion, x, c.incident, counters))
+            const LightContribution c = unshadowed(media, interval, *point_lights[i], x, wo, rng);
+            if (is_black(c.value) || blocked(occlusion, x, c, counters))
                 continue;
             sum += exp_neg(interval.sigma_t * (t - t0)) * c.value / pdf;
         }
@@ -208,7 +212,7 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
             for (int i = 0; i < n_steps && !marched.empty(); ++i) {
                 const float t = interval.t0 + static_cast<float>(i) * dt + s;
                 const Rgb src = source(media, interval, marched, occlusion, ray.at(t), wo,
-                                       settings.light_sampling, rng.next_float(), counters);
+                                       settings.light_sampling, rng.next_float(), rng, counters);
                 ++counters.steps;
                 result.radiance += t_step_start * t_within * src / pdf;
                 t_step_start *= exp_neg(interval.sigma_t * dt);

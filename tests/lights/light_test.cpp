@@ -78,5 +78,48 @@ TEST(LightJson, BadInputIsLocated) {
         std::string::npos);
 }
 
+TEST(LightJson, ExtendedLightsAndShadowSettings) {
+    const Light polygon = parse(R"({"type": "polygon", "luminance_cd_m2": 10, "samples": 32,
+        "shadows": "none", "vertices": [[0, 2, 0], [1, 2, 0], [1, 2, 1], [0, 2, 1]]})");
+    EXPECT_FALSE(is_delta(polygon));
+    EXPECT_EQ(polygon.samples, 32);
+    EXPECT_EQ(polygon.shadows, ShadowMode::None);
+    EXPECT_EQ(light_type_name(polygon), "polygon");
+    const Light spot = parse(R"({"type": "spot", "position": [0, 0, 0], "direction": [0, -1, 0],
+        "intensity_cd": 1, "cone_deg": 30})");
+    EXPECT_TRUE(is_delta(spot));
+    EXPECT_EQ(spot.shadows, ShadowMode::Ray);
+    EXPECT_EQ(light_type_name(spot), "spot");
+}
+
+TEST(LightJson, BadExtendedLightsAreLocated) {
+    const auto has = [](const std::string& text, const std::string& what) {
+        const std::string e = error_of(text);
+        EXPECT_NE(e.find(what), std::string::npos) << e;
+    };
+    has(R"({"type": "polygon", "luminance_cd_m2": 1, "vertices": [[0, 0, 0], [1, 0, 0], [2, 0, 0]]})",
+        "lights.json: /lights/0/vertices = [[0,0,0],[1,0,0],[2,0,0]]: the polygon has zero area");
+    has(R"({"type": "polygon", "luminance_cd_m2": -1, "vertices": [[0, 0, 0], [1, 0, 0], [0, 0, 1]]})",
+        "/lights/0/luminance_cd_m2 = -1: must be >= 0");
+    has(R"({"type": "sphere", "center": [0, 0, 0], "radius": 0, "luminance_cd_m2": 1})",
+        "/lights/0/radius = 0: must be > 0");
+    has(R"({"type": "line", "from": [1, 1, 1], "to": [1, 1, 1], "intensity_cd_per_m": 1})",
+        "from != to");
+    has(R"({"type": "spot", "position": [0, 0, 0], "direction": [0, -1, 0], "intensity_cd": 1,
+        "cone_deg": 30, "falloff_deg": 40})",
+        "/lights/0/falloff_deg = 40: must be in [0, cone_deg]");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "map"})",
+        "/lights/0/shadows = \"map\": \"map\" shadows are not implemented in this build");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "soft"})",
+        "unknown shadow mode");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "samples": 4})",
+        "/lights/0/samples = 4: samples applies to line, polygon and sphere lights");
+    has(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "luminance_cd_m2": 1,
+        "samples": 0})",
+        "/lights/0/samples = 0: must be an integer in [1, 4096]");
+    has(R"({"type": "goniometric", "position": [0, 0, 0], "ies": "nowhere.ies"})",
+        "lights.json: /lights/0/ies = \"nowhere.ies\": nowhere.ies: cannot open IES file");
+}
+
 }  // namespace
 }  // namespace kasumi
