@@ -99,12 +99,15 @@ Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
     const float step = march_step_m(media, settings);
     Rgb total(0.0f);
     for (const Light& light : lights) {
-        const IncidentLight in = incident_light(light, x);
+        // One sample per light: exact for delta lights, unbiased for extended ones (irradiance
+        // at normal incidence over the pdf; no cosine inside a medium).
+        const IncidentLight in = sample_incident(light, x, rng);
         if (is_black(in.irradiance))
             continue;
         const Rgb f = media.scattering(x, media_mask, scattering_cosine(wo, in.wi));
         ++counters.density_lookups;
-        if (is_black(f) || blocked(occlusion, x, in, counters))
+        if (is_black(f) ||
+            (light.shadows == ShadowMode::Ray && blocked(occlusion, x, in, counters)))
             continue;
         const Ray shadow{x, in.wi, 0.0f, in.distance >= kInfinity ? kInfinity : in.distance};
         total += f * in.irradiance *

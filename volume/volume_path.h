@@ -25,8 +25,9 @@ class PathEnvironment {
 };
 
 /// Light from every light scattered toward wo at x per unit length (1/m · cd/m²):
-/// sum_l sum_m sigma_s,m(x) p_m(mu_l) E_l T_l V_l, the transmittance T_l toward each light by
-/// `settings.estimator` and the visibility V_l by `occlusion` (null: no surfaces).
+/// sum_l sum_m sigma_s,m(x) p_m(mu_l) E_l T_l V_l, one sample_incident per light (extended
+/// lights are sampled), the transmittance T_l by `settings.estimator`, the visibility V_l by
+/// `occlusion` (null: no surfaces; lights with shadows "none" are never blocked).
 Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
                      const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                      const Vec3& wo, const VolumeSettings& settings, Pcg32& rng,
