@@ -1,5 +1,7 @@
 #include "render/integrator.h"
 
+#include "render/whitted.h"
+
 #include "volume/transmittance.h"
 #include "volume/volume_path.h"
 
@@ -13,7 +15,8 @@ Rgb phong_brdf(const PhongMaterial& m, const Vec3& n, const Vec3& wo, const Vec3
     if (max_component(m.ks) > 0.0f) {
         const Vec3 mirror = 2.0f * glm::dot(n, wi) * n - wi;
         const float cos_alpha = std::max(0.0f, glm::dot(mirror, wo));
-        f += m.ks * ((m.n + 2.0f) * kInv2Pi * std::pow(cos_alpha, m.n));
+        f += specular_reflectance(m, glm::dot(n, wi)) *
+             ((m.n + 2.0f) * kInv2Pi * std::pow(cos_alpha, m.n));
     }
     return f;
 }
@@ -49,7 +52,12 @@ class RenderPathEnvironment final : public PathEnvironment {
 Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo, Pcg32& rng,
                   RenderCounters& counters) {
     const SceneDesc& desc = scene.desc();
-    const PhongMaterial& material = std::get<PhongMaterial>(desc.materials[hit.material]);
+    // Mirrors and dielectrics reflect lights only along discrete directions: render/whitted.cpp
+    // traces them; here they are black.
+    const auto* phong = std::get_if<PhongMaterial>(&desc.materials[hit.material]);
+    if (phong == nullptr)
+        return Rgb(0.0f);
+    const PhongMaterial& material = *phong;
     // Shade the side the viewer sees: quads and open meshes are two-sided.
     Vec3 ng = hit.geometric_normal, ns = hit.shading_normal;
     if (glm::dot(ng, wo) < 0.0f) {
@@ -104,11 +112,23 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
     return radiance;
 }
 
+VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment, Pcg32& rng,
+                                  RenderCounters& counters) {
+    ++counters.volume_rays;
+    VolumeCounters vc;
+    const RenderPathEnvironment environment(scene, counters);
+    const VolumeResult v =
+        integrate_media(scene.media(), scene.desc().lights, scene.occlusion(), &environment,
+                        segment, scene.desc().render.volume, scene.plan().in_scattering, rng, vc);
+    counters.volume_steps += vc.steps;
+    counters.volume_shadow_rays += vc.shadow_rays;
+    return v;
+}
+
 PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
                              RenderCounters& counters) {
     ++counters.camera_rays;
     PixelSample sample;
-    const Vec3 wo = -ray.direction;
     float t_end = ray.t_max;
     if (const SurfaceScene* surfaces = scene.surfaces()) {
         if (const auto hit = surfaces->intersect(ray)) {
@@ -117,23 +137,16 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
             t_end = hit->t;
             sample.depth = hit->t * glm::dot(ray.direction, scene.camera().forward());
             sample.albedo = albedo(scene.desc().materials[hit->material]);
-            sample.surface = shade_surface(scene, *hit, wo, rng, counters);
+            sample.surface = shade_hit(scene, ray, *hit, rng, counters);
         }
     }
     if (!sample.hit)
         sample.surface = scene.desc().background;
 
     if (scene.plan().volume) {
-        ++counters.volume_rays;
-        VolumeCounters vc;
         Ray segment = ray;
         segment.t_max = t_end;
-        const RenderPathEnvironment environment(scene, counters);
-        const VolumeResult v = integrate_media(
-            scene.media(), scene.desc().lights, scene.occlusion(), &environment, segment,
-            scene.desc().render.volume, scene.plan().in_scattering, rng, vc);
-        counters.volume_steps += vc.steps;
-        counters.volume_shadow_rays += vc.shadow_rays;
+        const VolumeResult v = trace_volume_segment(scene, segment, rng, counters);
         sample.volume = v.radiance;
         sample.transmittance = v.transmittance;
     }

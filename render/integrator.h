@@ -13,9 +13,16 @@ namespace kasumi {
 PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
                              RenderCounters& counters);
 
-/// Phong shading of a surface point by the scene's lights and ambient term. Media between the
-/// surface and each light attenuate it through the scene's transmittance estimator (stochastic
-/// for grids; `rng` drives it).
+/// The volume stage over one ray segment [segment.t_min, segment.t_max) (t_max: the first
+/// surface, or kInfinity): transmittance and in-scattered radiance, for camera rays and for
+/// Whitted's reflected and refracted rays alike. Counts one volume ray. Never throws.
+VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment, Pcg32& rng,
+                                  RenderCounters& counters);
+
+/// Phong shading of a surface point by the scene's lights and ambient term (no media in front);
+/// black for mirrors and dielectrics (render/whitted.h traces those).
+/// Media between the surface and each light attenuate it through the scene's transmittance
+/// estimator (stochastic for grids; `rng` drives it).
 Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo, Pcg32& rng,
                   RenderCounters& counters);
 

@@ -25,12 +25,19 @@ struct PreviewDesc {
     float exposure_stops = 0.0f;
 };
 
+/// Whitted recursion through mirrors and dielectrics (render/whitted.h).
+struct WhittedSettings {
+    int max_depth = 5;         ///< specular bounces after the camera ray's first hit, [0, 64]
+    float min_weight = 1e-3f;  ///< a branch whose path weight falls below this is not traced
+};
+
 struct RenderSettings {
     uint64_t seed = 0;
     int threads = 0;      ///< 0: all hardware threads
     int tile_size = 16;   ///< pixels
     bool shadows = true;  ///< shadow rays for surfaces and media
     VolumeSettings volume;
+    WhittedSettings whitted;
     PreviewDesc preview;
 };
 

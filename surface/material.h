@@ -1,6 +1,6 @@
 #pragma once
-/// Surface materials: a closed set (Phong now; mirror and dielectric join with the Whitted
-/// issue). Reflectances are RGB in [0, 1].
+/// Surface materials: a closed set of small value types (Phong; the Whitted materials mirror
+/// and dielectric). Reflectances are RGB in [0, 1].
 #include "core/color.h"
 #include "core/json_node.h"
 
@@ -8,24 +8,56 @@
 
 namespace kasumi {
 
+/// How the Phong specular reflectance W depends on the angle of incidence θi (Phong 1975 allows
+/// any W(θi); the classic choice is a Fresnel curve). ks is W at normal incidence in every mode.
+enum class SpecularFresnel {
+    None,     ///< W = ks, constant
+    Schlick,  ///< W = ks + (1 - ks)(1 - cos θi)^5 (Schlick 1994)
+    Exact,    ///< W = F(cos θi, η) exact unpolarised Fresnel per channel, η from F(1, η) = ks
+};
+
 /// Phong material. Radiance leaving toward wo under a light of irradiance E (on a surface
 /// facing it) arriving from wi at the shading normal n:
-///   L = ka * L_ambient + (kd / π) E cos θ + ks (n + 2) / (2π) cos^n α  E cos θ,
-/// with cos θ = dot(n, wi) and α the angle between wo and wi mirrored about n: the normalised
-/// modified Phong lobe (Lafortune & Willems 1994), energy conserving for kd + ks <= 1.
+///   L = ka * L_ambient + (kd / π) E cos θ + W(θ) (n + 2) / (2π) cos^n α  E cos θ,
+/// with cos θ = dot(n, wi), α the angle between wo and wi mirrored about n, and W = ks unless
+/// `ks_fresnel` says otherwise: the normalised modified Phong lobe (Lafortune & Willems 1994),
+/// energy conserving for kd + W <= 1 (a Fresnel W reaches 1 at grazing incidence).
 struct PhongMaterial {
     Rgb ka{0.0f};
     Rgb kd{0.8f};
     Rgb ks{0.0f};
     float n = 20.0f;  ///< specular exponent, >= 0
+    SpecularFresnel ks_fresnel = SpecularFresnel::None;
 };
 
-using Material = std::variant<PhongMaterial>;
+/// A perfect mirror: reflects kr of the radiance arriving from the mirror direction.
+struct MirrorMaterial {
+    Rgb kr{1.0f};  ///< reflectance in [0, 1]
+};
 
-/// Parses {"type": "phong", "ka", "kd", "ks", "n"}; each reflectance a scalar or [r, g, b].
+/// A smooth dielectric interface (glass, water): exact Fresnel reflection, refraction with the
+/// rest (1 - F, times `tint` on every crossing), total internal reflection. The outside is the
+/// side the shape's normal points to.
+struct DielectricMaterial {
+    float ior = 1.5f;  ///< index of refraction relative to the outside medium, > 0
+    Rgb tint{1.0f};    ///< transmittance factor per refraction, in [0, 1]
+};
+
+using Material = std::variant<PhongMaterial, MirrorMaterial, DielectricMaterial>;
+
+/// Parses {"type": "phong", "ka", "kd", "ks", "n", "ks_fresnel"}, {"type": "mirror", "kr"} or
+/// {"type": "dielectric", "ior", "tint"}; reflectances are a scalar or [r, g, b] in [0, 1].
+/// Bad values throw an input error naming the file and JSON path (never clamped).
 Material parse_material(const JsonNode& node);
 
-/// Diffuse reflectance used for the `albedo` AOV.
+/// Diffuse reflectance for the `albedo` AOV: Phong kd, mirror kr, dielectric tint.
 Rgb albedo(const Material& m);
+
+/// True for materials that reflect or refract only in discrete directions (mirror, dielectric):
+/// lights reach them only through the Whitted recursion, never by direct shading.
+bool is_specular(const Material& m);
+
+/// The Phong specular reflectance W(θi) per channel; cos_theta_i = dot(n, wi) in [0, 1].
+Rgb specular_reflectance(const PhongMaterial& m, float cos_theta_i);
 
 }  // namespace kasumi

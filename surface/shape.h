@@ -3,9 +3,11 @@
 /// them into geometry; nothing here depends on Embree.
 #include "core/json_node.h"
 #include "core/math.h"
+#include "surface/shading.h"
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -43,7 +45,15 @@ struct Shape {
     std::string name;
     std::variant<SphereShape, QuadShape, BoxShape, MeshShape> geometry;
     uint32_t material = 0;  ///< index into the scene's material list
+    /// Empty: the shape's default, shading_of(). Spheres are always Phong (exact normals).
+    std::optional<Shading> shading;
 };
+
+/// The shading a shape uses: its `shading` if set, else Phong for spheres and for meshes with
+/// vertex normals, flat otherwise. Quads and boxes use the face normal at every vertex (Phong
+/// then equals flat; Gouraud differs under point lights); meshes use the file's vertex normals
+/// or, when it has none, angle-weighted ones (surface/shading.h).
+Shading shading_of(const Shape& shape);
 
 /// Parses one entry of `shapes`; `materials` maps names to indices, `base_dir` resolves files
 /// (meshes are loaded here, so load errors name the scene file and JSON path). Keys:
@@ -53,7 +63,9 @@ struct Shape {
 ///   {"type": "mesh", "file": "x.obj", "translate": [0, 0, 0], "scale": 1 (> 0)}: positions
 ///       become scale * p + translate
 /// and on every shape "material": a name in `materials` (required), "name" (default: the
-/// shape's JSON pointer, e.g. "/shapes/2"). Unknown keys and bad values throw input errors.
+/// shape's JSON pointer, e.g. "/shapes/2"), "shading": "flat" | "gouraud" | "phong" (default
+/// as Shape::shading says; spheres accept only "phong"). Unknown keys and bad values throw
+/// input errors.
 Shape parse_shape(const JsonNode& node, const std::map<std::string, uint32_t>& materials,
                   const std::string& base_dir);
 

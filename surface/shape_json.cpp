@@ -104,6 +104,16 @@ MeshShape parse_mesh(JsonObjectReader& reader, const std::string& base_dir) {
 
 }  // namespace
 
+Shading shading_of(const Shape& shape) {
+    if (std::holds_alternative<SphereShape>(shape.geometry))
+        return Shading::Phong;
+    if (shape.shading)
+        return *shape.shading;
+    if (const auto* mesh = std::get_if<MeshShape>(&shape.geometry))
+        return mesh->mesh.normals.empty() ? Shading::Flat : Shading::Phong;
+    return Shading::Flat;
+}
+
 Shape parse_shape(const JsonNode& node, const std::map<std::string, uint32_t>& materials,
                   const std::string& base_dir) {
     JsonObjectReader reader(node);
@@ -120,6 +130,21 @@ Shape parse_shape(const JsonNode& node, const std::map<std::string, uint32_t>& m
         shape.geometry = parse_mesh(reader, base_dir);
     } else {
         type.fail("unknown shape type (known types: box, mesh, quad, sphere)");
+    }
+    if (const auto shading = reader.optional("shading")) {
+        const std::string mode = shading->as_string();
+        if (mode == "flat")
+            shape.shading = Shading::Flat;
+        else if (mode == "gouraud")
+            shape.shading = Shading::Gouraud;
+        else if (mode == "phong")
+            shape.shading = Shading::Phong;
+        else
+            shading->fail("must be \"flat\", \"gouraud\" or \"phong\"");
+        if (kind == "sphere" && *shape.shading != Shading::Phong)
+            shading->fail(
+                "spheres are shaded with their exact normal (\"phong\"); use a "
+                "tessellated mesh for flat or Gouraud shading");
     }
     const JsonNode material = reader.required("material");
     const auto found = materials.find(material.as_string());

@@ -20,7 +20,9 @@ namespace {
 struct Geometry {
     bool is_sphere = false;
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;  ///< per vertex, or empty
+    std::vector<Vec3> normals;      ///< per vertex, or empty
+    bool authored_normals = false;  ///< the normals came from the file and define the outside
+    Shading shading = Shading::Flat;
     std::vector<std::array<uint32_t, 3>> triangles;
     DVec3 center{0.0};
     double radius = 0.0;
@@ -86,6 +88,7 @@ Geometry make_geometry(const MeshShape& m) {
     Geometry g;
     g.positions = m.mesh.positions;
     g.normals = m.mesh.normals;
+    g.authored_normals = !g.normals.empty();
     g.triangles = m.mesh.triangles;
     return g;
 }
@@ -230,7 +233,11 @@ SurfaceScene::SurfaceScene(const std::vector<Shape>& shapes) : m_impl(std::make_
     for (const Shape& shape : shapes) {
         impl.geometries.push_back(
             std::visit([](const auto& s) { return make_geometry(s); }, shape.geometry));
-        impl.geometries.back().material = shape.material;
+        Geometry& g = impl.geometries.back();
+        g.material = shape.material;
+        g.shading = shading_of(shape);
+        if (!g.is_sphere && g.shading != Shading::Flat && g.normals.empty())
+            g.normals = angle_weighted_normals(g.positions, g.triangles);
     }
     // The geometries' addresses are stable from here on: Embree keeps pointers to spheres.
     for (size_t id = 0; id < impl.geometries.size(); ++id) {
@@ -297,6 +304,7 @@ std::optional<SurfaceHit> SurfaceScene::intersect(const Ray& ray) const {
     hit.t = rayhit.ray.tfar;
     hit.shape = rayhit.hit.geomID;
     hit.material = g.material;
+    hit.shading = g.shading;
     const DVec3 origin(ray.origin);
     const DVec3 direction(ray.direction);
     const DVec3 p = origin + static_cast<double>(hit.t) * direction;
@@ -316,6 +324,9 @@ std::optional<SurfaceHit> SurfaceScene::intersect(const Ray& ray) const {
         return hit;
     }
 
+    hit.primitive = rayhit.hit.primID;
+    hit.u = rayhit.hit.u;
+    hit.v = rayhit.hit.v;
     const auto& tri = g.triangles[rayhit.hit.primID];
     const DVec3 v0(g.positions[tri[0]]);
     const DVec3 v1(g.positions[tri[1]]);
@@ -332,22 +343,38 @@ std::optional<SurfaceHit> SurfaceScene::intersect(const Ray& ray) const {
                  glm::max(glm::abs(g.positions[tri[1]]), glm::abs(g.positions[tri[2]]))));
     hit.shading_normal = Vec3(n);
     if (!g.normals.empty()) {
-        // Embree's barycentrics: p = (1 - u - v) v0 + u v1 + v v2.
-        const float u = rayhit.hit.u;
-        const float v = rayhit.hit.v;
-        const Vec3 interpolated =
-            (1.0f - u - v) * g.normals[tri[0]] + u * g.normals[tri[1]] + v * g.normals[tri[2]];
+        const Vec3 interpolated = kasumi::interpolate<Vec3>(
+            {g.normals[tri[0]], g.normals[tri[1]], g.normals[tri[2]]}, hit.u, hit.v);
         const float length = glm::length(interpolated);
         if (length > 0.0f && std::isfinite(length)) {
-            hit.shading_normal = interpolated / length;
+            if (g.shading != Shading::Flat)
+                hit.shading_normal = interpolated / length;
             // Authored normals say which side is out (pbrt-v4's convention): the geometric
             // normal follows them, so a mesh with inconsistent winding still faces outward.
-            if (glm::dot(DVec3(hit.shading_normal), n) < 0.0)
+            if (g.authored_normals && glm::dot(DVec3(interpolated), n) < 0.0) {
                 n = -n;
+                if (g.shading == Shading::Flat)
+                    hit.shading_normal = -hit.shading_normal;
+            }
         }
     }
     hit.geometric_normal = Vec3(n);
     return hit;
+}
+
+std::optional<HitTriangle> SurfaceScene::triangle(const SurfaceHit& hit) const {
+    KASUMI_DCHECK(hit.shape < m_impl->geometries.size());
+    const Geometry& g = m_impl->geometries[hit.shape];
+    if (g.is_sphere)
+        return std::nullopt;
+    KASUMI_DCHECK(hit.primitive < g.triangles.size());
+    const auto& tri = g.triangles[hit.primitive];
+    HitTriangle out;
+    for (int k = 0; k < 3; ++k) {
+        out.positions[k] = g.positions[tri[k]];
+        out.normals[k] = g.normals.empty() ? hit.geometric_normal : g.normals[tri[k]];
+    }
+    return out;
 }
 
 bool SurfaceScene::occluded(const Ray& ray) const {

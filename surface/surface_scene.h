@@ -24,10 +24,24 @@ struct SurfaceHit {
     Vec3 shading_normal{0.0f, 0.0f, 1.0f};  ///< interpolated vertex normal, else geometric
     uint32_t shape = 0;                     ///< index into the shapes the scene was built from
     uint32_t material = 0;                  ///< the shape's material index
+    uint32_t primitive = 0;                 ///< triangle index within the shape (spheres: 0)
+    /// Embree's barycentrics of the hit in its triangle: p = (1 - u - v) p0 + u p1 + v p2
+    /// (spheres: 0, 0).
+    float u = 0.0f;
+    float v = 0.0f;
+    Shading shading = Shading::Phong;  ///< the shape's shading mode
     /// Metres: the largest coordinate magnitude that entered the hit computation in float (the
     /// hit triangle's vertices; spheres are intersected in double and contribute ~0). The hit's
     /// rounding error scales with it, so offset_ray_origin(hit, direction) uses it.
     float error_scale = 0.0f;
+};
+
+/// The hit triangle's vertices (world space) and the unit normals its shading uses at them: the
+/// mesh's vertex normals (authored, or angle-weighted when the file has none), the face normal
+/// for quads and boxes. Vertex i has barycentrics (u, v) = (0, 0), (1, 0), (0, 1).
+struct HitTriangle {
+    std::array<Vec3, 3> positions;
+    std::array<Vec3, 3> normals;
 };
 
 struct SurfaceStats {
@@ -47,6 +61,8 @@ class SurfaceScene {
     std::optional<SurfaceHit> intersect(const Ray& ray) const;
     /// True if anything is hit with t in (ray.t_min, ray.t_max).
     bool occluded(const Ray& ray) const;
+    /// The triangle `hit` lies on; empty for spheres.
+    std::optional<HitTriangle> triangle(const SurfaceHit& hit) const;
 
     Bounds3 bounds() const;
     SurfaceStats stats() const;

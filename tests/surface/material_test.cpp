@@ -60,6 +60,42 @@ TEST(Material, UnknownTypeListsKnownTypes) {
     EXPECT_NE(message.find("phong"), std::string::npos) << message;
 }
 
+TEST(Material, MirrorAndDielectricParse) {
+    const auto mirror = std::get<MirrorMaterial>(parse(R"({"type": "mirror"})"));
+    EXPECT_EQ(mirror.kr, Rgb(1.0f));
+    EXPECT_EQ(std::get<MirrorMaterial>(parse(R"({"type": "mirror", "kr": [0.9, 0.8, 0.7]})")).kr,
+              Rgb(0.9f, 0.8f, 0.7f));
+    const auto glass =
+        std::get<DielectricMaterial>(parse(R"({"type": "dielectric", "ior": 1.33})"));
+    EXPECT_EQ(glass.ior, 1.33f);
+    EXPECT_EQ(glass.tint, Rgb(1.0f));
+    const Material tinted = parse(R"({"type": "dielectric", "ior": 1.5, "tint": [1, 0.9, 0.8]})");
+    EXPECT_EQ(albedo(tinted), Rgb(1.0f, 0.9f, 0.8f));
+    EXPECT_TRUE(is_specular(tinted));
+    EXPECT_FALSE(is_specular(parse(R"({"type": "phong"})")));
+    EXPECT_EQ(
+        std::get<PhongMaterial>(parse(R"({"type": "phong", "ks_fresnel": "exact"})")).ks_fresnel,
+        SpecularFresnel::Exact);
+}
+
+TEST(Material, BadMirrorAndDielectricValuesNameThePath) {
+    std::string message = input_error_of([] { parse(R"({"type": "mirror", "kr": 1.2})"); });
+    EXPECT_NE(message.find("scene.json: /materials/red/kr"), std::string::npos) << message;
+    for (const char* text :
+         {R"({"type": "dielectric", "ior": 0})", R"({"type": "dielectric", "ior": -1.5})"}) {
+        message = input_error_of([&] { parse(text); });
+        EXPECT_NE(message.find("scene.json: /materials/red/ior"), std::string::npos) << message;
+    }
+    message = input_error_of([] { parse(R"({"type": "dielectric"})"); });
+    EXPECT_NE(message.find("ior"), std::string::npos) << message;
+    message = input_error_of([] { parse(R"({"type": "dielectric", "ior": 1.5, "tint": 2})"); });
+    EXPECT_NE(message.find("/materials/red/tint"), std::string::npos) << message;
+    message = input_error_of([] { parse(R"({"type": "phong", "ks_fresnel": "fast"})"); });
+    EXPECT_NE(message.find("/materials/red/ks_fresnel"), std::string::npos) << message;
+    message = input_error_of([] { parse(R"({"type": "mirror", "ior": 1.5})"); });
+    EXPECT_NE(message.find("/materials/red/ior"), std::string::npos) << message;
+}
+
 TEST(Material, MissingTypeIsRejected) {
     EXPECT_NE(input_error_of([] { parse(R"({"kd": 0.5})"); }).find("type"), std::string::npos);
 }
