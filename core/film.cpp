@@ -1,5 +1,7 @@
 #include "core/film.h"
 
+#include "core/error.h"
+
 namespace kasumi {
 
 Film::Film(int width, int height)
@@ -24,6 +26,8 @@ void Film::set_pixel(int x, int y, const PixelSample& sum, int n, int hits, floa
 
 Image Film::to_image() const {
     Image image(m_width, m_height);
+    // Pointers into image.channels are taken below: no reallocation may move them.
+    image.channels.reserve(17);
     const char* rgb[3] = {"R", "G", "B"};
     ImageChannel* beauty[3];
     ImageChannel* surface[3];
@@ -43,6 +47,7 @@ Image Film::to_image() const {
     for (int c = 0; c < 3; ++c) {
         transmittance[c] = &image.add_channel(std::string("transmittance.") + rgb[c]);
     }
+    KASUMI_CHECK(image.channels.size() == 17);  // the reserve above held
     for (size_t i = 0; i < m_pixels.size(); ++i) {
         const Pixel& p = m_pixels[i];
         for (int c = 0; c < 3; ++c) {

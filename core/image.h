@@ -25,7 +25,9 @@ struct Image {
     Image() = default;
     Image(int w, int h) : width(w), height(h) {}
 
-    /// Adds a zero-filled channel and returns it.
+    /// Adds a zero-filled channel and returns it. The reference is invalidated by the next
+    /// add_channel (the channel vector may grow): fill channels one at a time, or look them up
+    /// with find() after adding them all.
     ImageChannel& add_channel(const std::string& name) {
         channels.push_back(
             ImageChannel{name, std::vector<float>(static_cast<size_t>(width) * height, 0.0f)});
