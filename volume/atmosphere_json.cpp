@@ -1,0 +1,184 @@
+#include "volume/atmosphere_json.h"
+
+#include "phase/phase_json.h"
+
+#include <algorithm>
+#include <array>
+
+namespace kasumi {
+
+namespace {
+
+constexpr double kRayleighDefault[3] = {5.802e-6, 13.558e-6, 33.1e-6};  // Hillaire 2020, 1/m
+constexpr double kMieScatteringDefault = 3.996e-6;                      // Bruneton 2017
+constexpr double kMieExtinctionDefault = 4.440e-6;
+constexpr double kOzoneDefault[3] = {0.650e-6, 1.881e-6, 0.085e-6};  // Bruneton 2017, 1/m
+
+void fill_rgb(Bands& out, const double rgb[3], const std::vector<double>& nm,
+              const std::vector<double>& rgb_nm) {
+    for (size_t i = 0; i < nm.size(); ++i)
+        out[i] = interpolate_rgb_coefficient(rgb, rgb_nm, nm[i]);
+}
+
+/// A coefficient: a number, [r, g, b], {"table": [[nm, value], ...]} or (if allowed) "auto".
+Bands read_coefficient(const JsonNode& node, const std::vector<double>& nm,
+                       const std::vector<double>& rgb_nm, bool allow_auto) {
+    Bands out{};
+    if (node.is_string()) {
+        if (!allow_auto || node.as_string() != "auto")
+            node.fail(allow_auto ? "expected \"auto\", a number, [r, g, b] or {\"table\": ...}"
+                                 : "expected a number, [r, g, b] or {\"table\": ...}");
+        for (size_t i = 0; i < nm.size(); ++i)
+            out[i] = rayleigh_scattering_standard_air(nm[i]);
+        return out;
+    }
+    if (node.is_object()) {
+        JsonObjectReader reader(node);
+        const JsonNode table = reader.required("table");
+        reader.finish();
+        std::vector<std::pair<double, double>> rows;
+        for (const JsonNode& row : table.elements()) {
+            if (!row.is_array() || row.size() != 2)
+                row.fail("expected [wavelength_nm, value]");
+            const double w = row.child(size_t{0}).as_double();
+            const double v = row.child(size_t{1}).as_double();
+            if (!rows.empty() && !(w > rows.back().first))
+                row.fail("wavelengths must increase");
+            if (!(v >= 0.0))
+                row.fail("must be >= 0");
+            rows.emplace_back(w, v);
+        }
+        if (rows.size() < 2)
+            table.fail("needs at least two rows");
+        for (size_t i = 0; i < nm.size(); ++i) {
+            const double w = std::clamp(nm[i], rows.front().first, rows.back().first);
+            size_t k = 1;
+            while (k + 1 < rows.size() && rows[k].first < w)
+                ++k;
+            const double f = (w - rows[k - 1].first) / (rows[k].first - rows[k - 1].first);
+            out[i] = rows[k - 1].second + f * (rows[k].second - rows[k - 1].second);
+        }
+        return out;
+    }
+    const Rgb rgb = node.non_negative_rgb();
+    const double v[3] = {rgb.r, rgb.g, rgb.b};
+    fill_rgb(out, v, nm, rgb_nm);
+    return out;
+}
+
+double positive_double(const JsonNode& n) {
+    const double v = n.as_double();
+    if (!(v > 0.0))
+        n.fail("must be > 0");
+    return v;
+}
+
+}  // namespace
+
+double interpolate_rgb_coefficient(const double rgb[3], const std::vector<double>& rgb_nm,
+                                   double lambda_nm) {
+    std::array<std::pair<double, double>, 3> nodes{
+        {{rgb_nm[0], rgb[0]}, {rgb_nm[1], rgb[1]}, {rgb_nm[2], rgb[2]}}};
+    std::sort(nodes.begin(), nodes.end());
+    for (const auto& n : nodes)
+        if (std::abs(n.first - lambda_nm) < 1e-9)
+            return n.second;
+    const size_t k = lambda_nm < nodes[1].first ? 0 : 1;  // segment [k, k+1], ends extrapolate
+    const auto [w0, v0] = nodes[k];
+    const auto [w1, v1] = nodes[k + 1];
+    if (v0 > 0.0 && v1 > 0.0 && w1 > w0) {
+        const double exponent = std::log(v1 / v0) / std::log(w1 / w0);
+        return v0 * std::pow(lambda_nm / w0, exponent);
+    }
+    // A zero node: linear, clamped at the ends and at zero.
+    const double f = std::clamp((lambda_nm - w0) / (w1 - w0), 0.0, 1.0);
+    return std::max(0.0, v0 + f * (v1 - v0));
+}
+
+Atmosphere default_earth_atmosphere(const std::vector<double>& nm,
+                                    const std::vector<double>& rgb_nm) {
+    Atmosphere a;
+    a.bands = static_cast<int>(nm.size());
+    a.wavelengths_nm = nm;
+    fill_rgb(a.rayleigh.scattering, kRayleighDefault, nm, rgb_nm);
+    a.rayleigh.profile = DensityProfile::exponential(8000.0);
+    for (size_t i = 0; i < nm.size(); ++i) {
+        a.mie.scattering[i] = kMieScatteringDefault;
+        a.mie.absorption[i] = kMieExtinctionDefault - kMieScatteringDefault;
+        a.ground_albedo[i] = 0.3;
+    }
+    a.mie.profile = DensityProfile::exponential(1200.0);
+    fill_rgb(a.ozone.absorption, kOzoneDefault, nm, rgb_nm);
+    a.ozone.profile = DensityProfile::tent(25000.0, 15000.0);
+    a.mie_phase = CornetteShanks{0.8f};
+    return a;
+}
+
+Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& nm,
+                            const std::vector<double>& rgb_nm) {
+    JsonObjectReader reader(node);
+    Atmosphere a = default_earth_atmosphere(nm, rgb_nm);
+    if (const auto v = reader.optional("ground_radius_m"))
+        a.ground_radius_m = positive_double(*v);
+    if (const auto v = reader.optional("top_radius_m"))
+        a.top_radius_m = positive_double(*v);
+    if (!(a.top_radius_m > a.ground_radius_m))
+        node.fail("top_radius_m must exceed ground_radius_m");
+    if (const auto v = reader.optional("ground_albedo")) {
+        a.ground_albedo = read_coefficient(*v, nm, rgb_nm, false);
+        for (size_t i = 0; i < nm.size(); ++i)
+            if (a.ground_albedo[i] > 1.0)
+                v->fail("must be in [0, 1]");
+    }
+    if (const auto v = reader.optional("rayleigh")) {
+        JsonObjectReader r(*v);
+        if (const auto s = r.optional("scattering"))
+            a.rayleigh.scattering = read_coefficient(*s, nm, rgb_nm, true);
+        if (const auto h = r.optional("scale_height_m"))
+            a.rayleigh.profile = DensityProfile::exponential(positive_double(*h));
+        r.finish();
+    }
+    if (const auto v = reader.optional("mie")) {
+        JsonObjectReader r(*v);
+        Bands scattering = a.mie.scattering;
+        Bands extinction{};
+        for (size_t i = 0; i < nm.size(); ++i)
+            extinction[i] = a.mie.scattering[i] + a.mie.absorption[i];
+        const auto s = r.optional("scattering");
+        const auto e = r.optional("extinction");
+        if (s)
+            scattering = read_coefficient(*s, nm, rgb_nm, false);
+        if (e)
+            extinction = read_coefficient(*e, nm, rgb_nm, false);
+        else if (s)
+            extinction = scattering;  // no extinction given: non-absorbing aerosols
+        for (size_t i = 0; i < nm.size(); ++i) {
+            if (extinction[i] < scattering[i])
+                (e ? *e : *s).fail("extinction must be >= scattering at every wavelength");
+            a.mie.scattering[i] = scattering[i];
+            a.mie.absorption[i] = extinction[i] - scattering[i];
+        }
+        if (const auto h = r.optional("scale_height_m"))
+            a.mie.profile = DensityProfile::exponential(positive_double(*h));
+        if (const auto p = r.optional("phase"))
+            a.mie_phase = parse_phase(*p);
+        r.finish();
+    }
+    if (const auto v = reader.optional("ozone")) {
+        JsonObjectReader r(*v);
+        if (const auto s = r.optional("absorption"))
+            a.ozone.absorption = read_coefficient(*s, nm, rgb_nm, false);
+        double center = 25000.0, half_width = 15000.0;
+        if (const auto c = r.optional("center_m"))
+            center = c->as_double();
+        if (const auto w = r.optional("half_width_m"))
+            half_width = positive_double(*w);
+        a.ozone.profile = DensityProfile::tent(center, half_width);
+        r.finish();
+    }
+    reader.optional("comment");
+    reader.finish();
+    return a;
+}
+
+}  // namespace kasumi

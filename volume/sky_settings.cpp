@@ -1,0 +1,63 @@
+#include "volume/sky_settings.h"
+
+#include "volume/atmosphere.h"
+
+namespace kasumi {
+
+const char* sky_mode_name(SkyMode mode) {
+    return mode == SkyMode::Reference ? "reference" : "fast";
+}
+
+void parse_sky_render_keys(JsonObjectReader& render, SkySettings& sky) {
+    if (const auto v = render.optional("sky")) {
+        JsonObjectReader reader(*v);
+        if (const auto m = reader.optional("mode")) {
+            const std::string name = m->as_string();
+            if (name == "reference")
+                sky.mode = SkyMode::Reference;
+            else if (name == "fast")
+                sky.mode = SkyMode::Fast;
+            else
+                m->fail("expected \"reference\" or \"fast\"");
+        }
+        auto read_int = [](const JsonNode& n, int lo, int hi) {
+            const int64_t x = n.as_int();
+            if (x < lo || x > hi)
+                n.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                       "]");
+            return static_cast<int>(x);
+        };
+        if (const auto o = reader.optional("orders"))
+            sky.orders = read_int(*o, 1, 64);
+        if (const auto s = reader.optional("view_steps"))
+            sky.view_steps = read_int(*s, 4, 4096);
+        if (const auto s = reader.optional("sun_steps"))
+            sky.sun_steps = read_int(*s, 4, 4096);
+        reader.finish();
+    }
+    if (const auto v = render.optional("spectral")) {
+        if (v->is_string()) {
+            if (v->as_string() != "rgb")
+                v->fail("expected \"rgb\" or a number of wavelengths");
+            sky.spectral_bands = 0;
+        } else {
+            const int64_t n = v->as_int();
+            if (n < 4 || n > kMaxBands)
+                v->fail("must be \"rgb\" or a number of wavelengths in [4, " +
+                        std::to_string(kMaxBands) + "]");
+            sky.spectral_bands = static_cast<int>(n);
+        }
+    }
+    if (const auto v = render.optional("wavelengths_nm")) {
+        if (!v->is_array() || v->size() != 3)
+            v->fail("expected [red, green, blue] wavelengths in nm");
+        for (size_t i = 0; i < 3; ++i) {
+            const double nm = v->child(i).as_double();
+            if (!(nm >= 360.0 && nm <= 830.0))
+                v->child(i).fail("must be in [360, 830] nm");
+            sky.rgb_wavelengths_nm[i] = nm;
+        }
+    }
+}
+
+}  // namespace kasumi
