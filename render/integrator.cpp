@@ -67,6 +67,8 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
     Rgb radiance(0.0f);
     if (scene.plan().ambient)
         radiance += material.ka * desc.ambient;
+    if (scene.sky() != nullptr)
+        radiance += material.kd * kInvPi * scene.sky()->irradiance(ns);
     if (!scene.plan().direct_light)
         return radiance;
     for (const Light& light : desc.lights) {
@@ -151,6 +153,8 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
         sample.transmittance = v.transmittance;
     }
     sample.radiance = sample.volume + sample.transmittance * sample.surface;
+    if (scene.sky() != nullptr)
+        scene.sky()->apply(ray, t_end, rng, sample);
     return sample;
 }
 

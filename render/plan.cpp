@@ -134,6 +134,8 @@ Plan make_plan(const SceneDesc& scene) {
     plan.stages.push_back({"background", max_component(scene.background) > 0.0f,
                            max_component(scene.background) > 0.0f ? "constant background radiance"
                                                                   : "black background"});
+    for (const SkyPlanStage& s : sky_plan_stages(scene.sky.get()))
+        plan.stages.push_back({s.name, s.enabled, s.reason});
     return plan;
 }
 

@@ -54,6 +54,9 @@ TransmittanceProbe probe_transmittance(const SceneRuntime& scene, const Vec3& fr
                                        Estimator estimator, int samples) {
     TransmittanceProbe probe;
     probe.samples = samples;
+    // The atmosphere: deterministic quadrature in double precision (no estimator noise).
+    const Rgb t_sky = scene.sky() != nullptr ? scene.sky()->transmittance(from, to) : Rgb(1.0f);
+    probe.transmittance = t_sky;
     const float distance = glm::length(to - from);
     if (scene.media().empty() || !(distance > 0.0f))
         return probe;
@@ -66,8 +69,8 @@ TransmittanceProbe probe_transmittance(const SceneRuntime& scene, const Vec3& fr
                               scene.desc().render.seed);
         mean.add(estimate_transmittance(scene.media(), ray, estimator, step, rng, counters));
     }
-    probe.transmittance = mean.mean();
-    probe.stderr_ = mean.standard_error();
+    probe.transmittance = mean.mean() * t_sky;
+    probe.stderr_ = mean.standard_error() * t_sky;
     return probe;
 }
 

@@ -7,6 +7,7 @@
 #include "surface/shape.h"
 #include "volume/in_scattering.h"
 #include "volume/medium.h"
+#include "volume/sky_scene.h"
 
 #include <cstdint>
 #include <string>
@@ -38,6 +39,7 @@ struct RenderSettings {
     bool shadows = true;  ///< shadow rays for surfaces and media
     VolumeSettings volume;
     WhittedSettings whitted;
+    SkySettings sky;  ///< render.sky, render.spectral, render.wavelengths_nm (docs/sky.md)
     PreviewDesc preview;
 };
 
@@ -53,6 +55,7 @@ struct SceneDesc {
     std::vector<Medium> media;
     Rgb ambient{0.0f};     ///< ambient radiance (cd/m²) that the Phong ka term reflects
     Rgb background{0.0f};  ///< radiance (cd/m²) of rays that leave the scene
+    std::shared_ptr<const SkyScene> sky;  ///< "atmosphere" + "sun"; null without an atmosphere
     RenderSettings render;
 };
 

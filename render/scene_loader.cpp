@@ -4,6 +4,7 @@
 #include "lights/light_json.h"
 #include "volume/medium_json.h"
 #include "volume/medium_set.h"
+#include "volume/sky_renderer.h"
 #include "volume/transmittance.h"
 
 #include <filesystem>
@@ -123,6 +124,7 @@ RenderSettings parse_render(const JsonNode& node) {
             render.preview.exposure_stops = e->as_float();
         preview.finish();
     }
+    parse_sky_render_keys(reader, render.sky);
     reader.finish();
     return render;
 }
@@ -241,6 +243,7 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file) {
         scene.render.volume.estimator =
             MediumSet(scene.media).all_homogeneous() ? Estimator::March : Estimator::ResidualRatio;
     }
+    parse_sky_keys(reader, scene.render.sky, scene.sky, scene.lights);
     reader.optional("comment");  // free text for the scene's author
     reader.finish();
     return scene;

@@ -25,6 +25,8 @@ SceneRuntime::SceneRuntime(SceneDesc desc)
         m_occlusion = std::make_unique<SurfaceOcclusion>(*m_surfaces);
     if (m_plan.volume)
         m_media = MediumSet(m_desc.media);
+    if (m_desc.sky)
+        m_sky = std::make_unique<SkyRenderer>(m_desc.sky, m_desc.camera.position);
 }
 
 }  // namespace kasumi

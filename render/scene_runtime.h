@@ -7,6 +7,7 @@
 #include "render/scene.h"
 #include "surface/surface_scene.h"
 #include "volume/medium_set.h"
+#include "volume/sky_renderer.h"
 
 #include <memory>
 
@@ -32,6 +33,8 @@ class SceneRuntime {
     const Camera& camera() const { return m_camera; }
     const SurfaceScene* surfaces() const { return m_surfaces.get(); }
     const MediumSet& media() const { return m_media; }
+    /// The sky (atmosphere, sun, tables); null without an atmosphere.
+    const SkyRenderer* sky() const { return m_sky.get(); }
     /// Null when the plan has no shadow rays.
     const OcclusionQuery* occlusion() const { return m_occlusion.get(); }
 
@@ -42,6 +45,7 @@ class SceneRuntime {
     std::unique_ptr<SurfaceScene> m_surfaces;
     std::unique_ptr<SurfaceOcclusion> m_occlusion;
     MediumSet m_media;
+    std::unique_ptr<SkyRenderer> m_sky;
 };
 
 }  // namespace kasumi

@@ -1,34 +1,10 @@
 #include "volume/sky_reference.h"
 
+#include "volume/sky_quadrature.h"
+
 namespace kasumi {
 
 namespace {
-
-/// Calls f(t, dt) for `steps` midpoint nodes over [t0, t1] in increasing t. The interval is
-/// split at tc, the point nearest the planet centre (where the density peaks along a straight
-/// ray); on each side t = tc -/+ L u² so the nodes crowd toward tc, and dt = 2 L u du.
-template <class F>
-void for_each_node(const Atmosphere& a, const DVec3& p, const DVec3& d, double t0, double t1,
-                   int steps, F&& f) {
-    if (!(t1 > t0))
-        return;
-    const double tc = std::clamp(-glm::dot(p - a.center(), d), t0, t1);
-    const double l1 = tc - t0, l2 = t1 - tc;
-    int n1 = static_cast<int>(std::lround(steps * l1 / (t1 - t0)));
-    if (l1 > 0.0)
-        n1 = std::max(n1, 1);
-    if (l2 > 0.0)
-        n1 = std::min(n1, steps - 1);
-    const int n2 = steps - n1;
-    for (int k = n1 - 1; k >= 0; --k) {
-        const double u = (k + 0.5) / n1;
-        f(tc - l1 * u * u, 2.0 * l1 * u / n1);
-    }
-    for (int k = 0; k < n2; ++k) {
-        const double u = (k + 0.5) / n2;
-        f(tc + l2 * u * u, 2.0 * l2 * u / n2);
-    }
-}
 
 double altitude(const Atmosphere& a, const DVec3& x) {
     return a.radius(x) - a.ground_radius_m;
@@ -55,7 +31,7 @@ DVec3 sample_cosine(const DVec3& n, double u1, double u2) {
 Bands atmosphere_optical_depth(const Atmosphere& a, const DVec3& p, const DVec3& d, double t0,
                                double t1, int steps) {
     Bands tau{};
-    for_each_node(a, p, d, t0, t1, steps, [&](double t, double dt) {
+    for_each_sky_node(a, p, d, t0, t1, steps, [&](double t, double dt) {
         const AtmosphereCoefficients c = atmosphere_coefficients(a, altitude(a, p + t * d));
         for (int i = 0; i < a.bands; ++i)
             tau[i] += c.sigma_t[i] * dt;
@@ -132,7 +108,7 @@ SkySample reference_sky(const SkyScene& sky, const DVec3& p, const DVec3& d, dou
     Bands chosen_t_r{}, chosen_t_m{};  // T sigma_s,R dt and T sigma_s,M dt at the chosen node
 
     Bands tau{};
-    for_each_node(a, p, d, t_enter, t_end, steps, [&](double t, double dt) {
+    for_each_sky_node(a, p, d, t_enter, t_end, steps, [&](double t, double dt) {
         const DVec3 x = p + t * d;
         const AtmosphereCoefficients c = atmosphere_coefficients(a, altitude(a, x));
         Bands weight_r{}, weight_m{};

@@ -98,4 +98,31 @@ std::string describe_sky(const SkyScene& sky) {
     return buf;
 }
 
+std::vector<SkyPlanStage> sky_plan_stages(const SkyScene* sky) {
+    if (sky == nullptr) {
+        return {{"atmosphere", false, "no \"atmosphere\": no sky, no LUTs"}};
+    }
+    const SkySettings& s = sky->settings;
+    const bool fast = s.mode == SkyMode::Fast;
+    std::vector<SkyPlanStage> out;
+    out.push_back({"atmosphere", true, describe_sky(*sky)});
+    out.push_back(
+        {"sky-luts", fast,
+         fast ? "transmittance 256x64 and multiple scattering 32x32 (atmosphere only, built "
+                "once), sky view 192x108 for this camera altitude and sun (Hillaire 2020); "
+                "aerial perspective marched per pixel with the tables"
+              : "render.sky.mode is \"reference\": no tables"});
+    out.push_back({"sky-reference", !fast,
+                   !fast ? "ray marching in double precision, " + std::to_string(s.view_steps) +
+                               " view nodes, " + std::to_string(s.sun_steps) + " sun nodes, " +
+                               std::to_string(s.orders) +
+                               " scattering orders (orders > 1 by Monte Carlo paths)"
+                         : "fast mode: the reference integrator is not used"});
+    out.push_back({"sky-light", true,
+                   "sun through the air as a directional light (transmittance at the origin); "
+                   "sky + ground irradiance table (16x32 normals, no occlusion) on diffuse "
+                   "surfaces; sky as background, aerial perspective in front of surfaces"});
+    return out;
+}
+
 }  // namespace kasumi

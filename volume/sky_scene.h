@@ -48,4 +48,14 @@ std::vector<double> sky_wavelengths_nm(const SkySettings& settings);
 /// One line for the plan: the atmosphere, the sun and how the sky is computed.
 std::string describe_sky(const SkyScene& sky);
 
+struct SkyPlanStage {
+    std::string name;
+    bool enabled = false;
+    std::string reason;
+};
+
+/// The plan's sky stages (atmosphere, tables, sky light), each with why it runs or not;
+/// `sky` null: no atmosphere.
+std::vector<SkyPlanStage> sky_plan_stages(const SkyScene* sky);
+
 }  // namespace kasumi

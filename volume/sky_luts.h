@@ -1,0 +1,58 @@
+#pragma once
+/// Fast sky: precomputed tables after Hillaire 2020 ("A Scalable and Production Ready Sky and
+/// Atmosphere Rendering Technique", Computer Graphics Forum 39(4)):
+///  - transmittance to the top of the atmosphere T(r, mu), 256 x 64, Bruneton's 2017
+///    parametrisation (exact at the texel centres, bilinear between);
+///  - multiple scattering Psi_ms(r, mu_s), 32 x 32: second-order light with an isotropic phase
+///    summed as the geometric series 1 / (1 - f_ms) (Hillaire eqs. 5-10);
+///  - sky view for one camera altitude and sun, 192 x 108 in (azimuth from the sun, elevation
+///    with sqrt crowding at the horizon), marched with the two tables above.
+/// Transmittance and multiple scattering depend on the atmosphere only and are built once;
+/// the sky view depends on the sun and the camera altitude. Values per band, per unit TOA
+/// solar irradiance (radiance 1/sr).
+#include "volume/sky_scene.h"
+
+#include <vector>
+
+namespace kasumi {
+
+class SkyLuts {
+  public:
+    /// Builds the transmittance and multiple-scattering tables (sun independent).
+    explicit SkyLuts(const SkyScene& sky);
+
+    /// Builds the sky-view table for a camera at `camera` (world metres) and the scene's sun.
+    void build_sky_view(const SkyScene& sky, const DVec3& camera);
+
+    /// Transmittance from a point at radius r toward cosine mu (mu above the horizon), bilinear.
+    void transmittance(double r, double mu, Bands& out) const;
+    /// Sun transmittance at world point p including the disc fraction above the horizon.
+    void sun_transmittance(const SkyScene& sky, const DVec3& p, Bands& out) const;
+    /// Multiple-scattering radiance per unit sigma_s at radius r, sun zenith cosine mu_s.
+    void multiple_scattering(double r, double mu_s, Bands& out) const;
+    /// Sky (and ground) radiance seen from the sky-view camera along d, without the sun disc.
+    void sky_view(const SkyScene& sky, const DVec3& d, Bands& out) const;
+
+    /// In-scattering and transmittance along p + t d over [0, t_max] by `steps` nodes with the
+    /// tables for the light (aerial perspective; also fills the sky-view table). Adds the
+    /// ground if the segment reaches it.
+    void march(const SkyScene& sky, const DVec3& p, const DVec3& d, double t_max, int steps,
+               Bands& radiance, Bands& transmittance) const;
+
+    static constexpr int kTransmittanceW = 256, kTransmittanceH = 64;
+    static constexpr int kMultipleW = 32, kMultipleH = 32;
+    static constexpr int kSkyViewW = 192, kSkyViewH = 108;
+
+  private:
+    void lookup(const std::vector<float>& table, int w, int h, double u, double v,
+                Bands& out) const;
+    int m_bands = 3;
+    double m_rg = 0.0, m_rt = 0.0;
+    DVec3 m_camera{0.0};
+    double m_camera_r = 0.0;
+    std::vector<float> m_transmittance;  ///< [y][x][band]
+    std::vector<float> m_multiple;
+    std::vector<float> m_sky_view;
+};
+
+}  // namespace kasumi

@@ -1,0 +1,66 @@
+#pragma once
+/// The sky at render time: the background of rays that leave the scene, aerial perspective in
+/// front of surfaces, the sky's irradiance on surfaces, and the transmittance of the air, in
+/// `reference` mode (volume/sky_reference.h) or `fast` mode (volume/sky_luts.h). RGB outputs
+/// are in the working space with luminance in cd/m² (radiance) or lux (irradiance).
+#include "core/film.h"
+#include "core/rng.h"
+#include "lights/light.h"
+#include "volume/sky_luts.h"
+#include "volume/sky_scene.h"
+
+#include <memory>
+
+namespace kasumi {
+
+class SkyRenderer {
+  public:
+    /// Builds what the mode needs for a camera at `camera_world`: in fast mode the tables
+    /// (transmittance and multiple scattering once; the sky view for this camera and sun);
+    /// in both modes the table of sky irradiance on surfaces near the origin.
+    SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world);
+
+    const SkyScene& sky() const { return *m_sky; }
+    const SkyLuts* luts() const { return m_luts.get(); }
+
+    /// Radiance of a ray that meets no surface: sky, ground of the planet and the sun's disc.
+    Rgb background(const Ray& ray, Pcg32& rng) const;
+    /// In-scattered radiance and transmittance of the air over [0, t] of `ray`.
+    void aerial_perspective(const Ray& ray, float t, Pcg32& rng, Rgb& radiance,
+                            Rgb& transmittance) const;
+    /// Composes the sky into a camera sample: the background where the ray met nothing, and
+    /// L = L_air + T_air * L in front of a surface at `t_hit`.
+    void apply(const Ray& ray, float t_hit, Pcg32& rng, PixelSample& sample) const;
+    /// Illuminance (lux) from the sky and the lit ground on a surface near the origin with
+    /// unit normal n, nothing occluding (interpolated from a table of 16 x 32 normals).
+    Rgb irradiance(const Vec3& n) const;
+    /// Transmittance of the air between two points (RGB: the bands themselves in RGB mode, the
+    /// sun-spectrum-weighted mean per channel in spectral mode).
+    Rgb transmittance(const Vec3& from, const Vec3& to) const;
+    /// Reduces per-band transmittance to RGB (see transmittance()).
+    Rgb transmittance_rgb(const Bands& t) const;
+
+  private:
+    Bands radiance_bands(const DVec3& p, const DVec3& d, double t_max, bool sun_disc, Pcg32& rng,
+                         Bands* transmittance) const;
+    void build_irradiance();
+
+    std::shared_ptr<const SkyScene> m_sky;
+    std::unique_ptr<SkyLuts> m_luts;
+    DVec3 m_camera{0.0};
+    Rgb m_white{1.0f};  ///< to_rgb of a flat unit spectrum (transmittance normaliser)
+    static constexpr int kIrrH = 16, kIrrW = 32;
+    std::vector<Rgb> m_irradiance;  ///< [elevation][azimuth] of the normal
+};
+
+/// The sun as a directional light for surfaces and media: its illuminance at the top of the
+/// atmosphere attenuated by the air from the origin toward it (evaluated once: scenes are
+/// small against the 8 km scale height), or unattenuated without an atmosphere.
+Light make_sun_light(const SkyScene& sky, bool through_atmosphere);
+
+/// Reads the scene's "atmosphere" and "sun" keys (either may be absent): a sun adds its
+/// directional light to `lights`; an atmosphere sets `sky`.
+void parse_sky_keys(JsonObjectReader& scene, const SkySettings& settings,
+                    std::shared_ptr<const SkyScene>& sky, std::vector<Light>& lights);
+
+}  // namespace kasumi
