@@ -1,0 +1,95 @@
+#include "apps/study_command.h"
+
+#include "apps/scene_options.h"
+#include "core/error.h"
+#include "render/study.h"
+#include "render/study_report.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+namespace kasumi {
+
+void add_study_command(CLI::App& root) {
+    struct Options {
+        SceneOptions scene;
+        std::vector<std::string> vary;
+        std::string reference = "auto";
+        std::vector<std::string> reference_sets;
+        int reference_spp = 0;
+        int repeats = 3;
+        std::string res;
+        int spp = 0;
+        int threads = 0;
+        std::string output;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* cmd = root.add_subcommand(
+        "study",
+        "render every combination of varied settings; error against time, as a table "
+        "and a plot");
+    options->scene.add_to(*cmd);
+    cmd->add_option("--vary", options->vary,
+                    "KEY=V1,V2,...: a JSON pointer (or spp) and its values (repeatable)");
+    cmd->add_option("--reference", options->reference,
+                    "auto (render one with the most accurate values) or an EXR file");
+    cmd->add_option("--reference-spp", options->reference_spp,
+                    "spp of the automatic reference (default max(256, 16 x largest spp))")
+        ->check(CLI::Range(2, 1 << 24));
+    cmd->add_option("--reference-set", options->reference_sets,
+                    "/json/pointer=VALUE for the automatic reference only (repeatable)");
+    cmd->add_option("--repeats", options->repeats, "timed renders per configuration (median)")
+        ->check(CLI::Range(1, 1000));
+    cmd->add_option("--res", options->res, "resolution WxH (overrides film.width/height)");
+    cmd->add_option("--spp", options->spp, "samples per pixel unless spp is varied")
+        ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--threads", options->threads, "worker threads (0: all)")
+        ->check(CLI::Range(0, 1024));
+    cmd->add_option("-o,--output", options->output, "directory for study.csv, .md and .svg")
+        ->required();
+    cmd->callback([options] {
+        StudySpec spec;
+        spec.scene_path = options->scene.scene_path;
+        spec.sets = options->scene.sets;
+        for (const std::string& v : options->vary)
+            spec.axes.push_back(parse_vary(v));
+        for (const std::string& s : options->reference_sets)
+            (void)parse_override(s);
+        if (options->reference != "auto") {
+            if (!std::filesystem::exists(options->reference)) {
+                throw Error(ErrorKind::Usage, "--reference expects auto or an EXR file; " +
+                                                  options->reference + " does not exist");
+            }
+            spec.reference_file = options->reference;
+        }
+        spec.reference_sets = options->reference_sets;
+        spec.reference_spp = options->reference_spp;
+        spec.repeats = options->repeats;
+        spec.spp = options->spp;
+        spec.threads = options->threads;
+        if (!options->res.empty()) {
+            std::istringstream in(options->res);
+            char x = 0;
+            if (!(in >> spec.width >> x >> spec.height) || x != 'x' || !in.eof() ||
+                spec.width < 1 || spec.height < 1) {
+                throw Error(ErrorKind::Usage, "--res expects WxH, got \"" + options->res + "\"");
+            }
+        }
+        const bool quiet = options->scene.quiet;
+        const StudyResult result = run_study(spec, [quiet](const std::string& line) {
+            if (!quiet)
+                std::fprintf(stderr, "%s\n", line.c_str());
+        });
+        write_study(result, options->output);
+        if (!quiet) {
+            std::fprintf(stderr, "wrote %s/study.csv, study.md and study.svg\n",
+                         options->output.c_str());
+        }
+        if (options->scene.verbose)
+            std::fputs(study_markdown(result).c_str(), stderr);
+    });
+}
+
+}  // namespace kasumi

@@ -1,0 +1,377 @@
+#include "render/study.h"
+
+#include "core/error.h"
+#include "core/exr_io.h"
+#include "render/renderer.h"
+#include "render/scene_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <set>
+
+namespace kasumi {
+
+namespace {
+
+/// Splits at commas outside brackets, braces and double quotes.
+std::vector<std::string> split_top_level(const std::string& text) {
+    std::vector<std::string> parts;
+    std::string current;
+    int depth = 0;
+    bool quoted = false;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (quoted) {
+            if (c == '\\' && i + 1 < text.size()) {
+                current += c;
+                current += text[++i];
+                continue;
+            }
+            quoted = c != '"';
+        } else if (c == '"') {
+            quoted = true;
+        } else if (c == '[' || c == '{') {
+            ++depth;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        } else if (c == ',' && depth == 0) {
+            parts.push_back(current);
+            current.clear();
+            continue;
+        }
+        current += c;
+    }
+    parts.push_back(current);
+    return parts;
+}
+
+std::optional<double> as_number(const std::string& text) {
+    try {
+        const Json j = Json::parse(text);
+        if (j.is_number())
+            return j.get<double>();
+    } catch (const Json::exception&) {
+    }
+    return std::nullopt;
+}
+
+/// The text of a value as a word: JSON strings lose their quotes.
+std::string as_word(const std::string& text) {
+    try {
+        const Json j = Json::parse(text);
+        if (j.is_string())
+            return j.get<std::string>();
+    } catch (const Json::exception&) {
+    }
+    return text;
+}
+
+bool names_a_step(const std::string& key) {
+    const std::string last = key.substr(key.rfind('/') + 1);
+    for (const char* word : {"step", "tolerance", "error", "eps"}) {
+        if (last.find(word) != std::string::npos)
+            return true;
+    }
+    return false;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// Creates the missing objects along `pointer` (all but its last token) so an override can set
+/// a key the scene leaves at its default.
+void create_parents(Json& root, const std::string& pointer) {
+    Json* node = &root;
+    size_t start = 1;
+    while (true) {
+        const size_t slash = pointer.find('/', start);
+        if (slash == std::string::npos)
+            return;
+        std::string token = pointer.substr(start, slash - start);
+        // JSON pointer escapes (RFC 6901): ~1 is '/', ~0 is '~'.
+        for (size_t p; (p = token.find("~1")) != std::string::npos;)
+            token.replace(p, 2, "/");
+        for (size_t p; (p = token.find("~0")) != std::string::npos;)
+            token.replace(p, 2, "~");
+        if (!node->is_object())
+            return;  // arrays and values: apply_overrides reports what is wrong
+        if (!node->contains(token))
+            (*node)[token] = Json::object();
+        node = &(*node)[token];
+        start = slash + 1;
+    }
+}
+
+std::string join_sets(const std::vector<std::string>& sets) {
+    std::string text;
+    for (const std::string& s : sets)
+        text += (text.empty() ? "" : " ") + s;
+    return text;
+}
+
+std::unique_ptr<SceneRuntime> load_runtime(const std::string& scene_path,
+                                           const std::vector<std::string>& sets) {
+    return std::make_unique<SceneRuntime>(
+        parse_scene(study_document(scene_path, sets), scene_path));
+}
+
+RenderResult render_quietly(const SceneRuntime& runtime, int threads) {
+    RenderOptions options;
+    options.threads = threads;
+    options.progress = false;
+    return render_image(runtime, options);
+}
+
+}  // namespace
+
+StudyAxis parse_vary(const std::string& text) {
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0) {
+        throw Error(ErrorKind::Usage, "--vary expects KEY=V1,V2,..., got \"" + text + "\"");
+    }
+    StudyAxis axis;
+    axis.key = text.substr(0, eq);
+    for (const std::string& part : study_pointers(axis.key)) {
+        if (part.empty() || part[0] != '/') {
+            throw Error(ErrorKind::Usage, "--vary " + axis.key +
+                                              ": KEY must be \"spp\" or a JSON pointer such as "
+                                              "/render/volume/step_m");
+        }
+    }
+    std::set<std::string> seen;
+    for (const std::string& value : split_top_level(text.substr(eq + 1))) {
+        if (value.empty()) {
+            throw Error(ErrorKind::Usage,
+                        "--vary " + axis.key + ": empty value in \"" + text.substr(eq + 1) + "\"");
+        }
+        if (!seen.insert(value).second) {
+            throw Error(ErrorKind::Usage,
+                        "--vary " + axis.key + ": value " + value + " is listed twice");
+        }
+        axis.values.push_back(value);
+    }
+    if (axis.key == "spp") {
+        for (const std::string& v : axis.values) {
+            const auto n = as_number(v);
+            if (!n || *n < 1 || *n != std::floor(*n) || *n > (1 << 20)) {
+                throw Error(ErrorKind::Usage, "--vary spp: " + v + " is not an integer >= 1");
+            }
+        }
+    }
+    return axis;
+}
+
+std::vector<std::string> study_pointers(const std::string& key) {
+    std::vector<std::string> parts;
+    size_t start = 0;
+    while (true) {
+        const size_t plus = key.find('+', start);
+        const std::string part = key.substr(start, plus - start);
+        parts.push_back(part == "spp" ? "/film/spp" : part);
+        if (plus == std::string::npos)
+            return parts;
+        start = plus + 1;
+    }
+}
+
+std::vector<std::vector<size_t>> expand_combinations(const std::vector<StudyAxis>& axes) {
+    std::vector<std::vector<size_t>> out{std::vector<size_t>(axes.size(), 0)};
+    for (const StudyAxis& a : axes) {
+        if (a.values.empty())
+            return {};
+    }
+    // Odometer: increment the last axis, carry leftwards.
+    while (true) {
+        std::vector<size_t> next = out.back();
+        size_t i = axes.size();
+        while (i > 0) {
+            --i;
+            if (++next[i] < axes[i].values.size())
+                break;
+            next[i] = 0;
+            if (i == 0)
+                return out;
+        }
+        if (axes.empty())
+            return out;
+        out.push_back(next);
+    }
+}
+
+std::string most_accurate_value(const StudyAxis& axis) {
+    KASUMI_CHECK(!axis.values.empty());
+    bool numeric = true;
+    for (const std::string& v : axis.values)
+        numeric = numeric && as_number(v).has_value();
+    if (numeric) {
+        const bool smallest = names_a_step(axis.key);
+        auto best = axis.values.begin();
+        for (auto it = axis.values.begin(); it != axis.values.end(); ++it) {
+            const double v = *as_number(*it), b = *as_number(*best);
+            if (smallest ? v < b : v > b)
+                best = it;
+        }
+        return *best;
+    }
+    for (const char* preferred : {"multiple", "ratio", "residual-ratio"}) {
+        for (const std::string& v : axis.values) {
+            if (as_word(v) == preferred)
+                return v;
+        }
+    }
+    return axis.values.back();
+}
+
+Json study_document(const std::string& scene_path, const std::vector<std::string>& sets) {
+    Json doc = read_json_file(scene_path);
+    std::vector<Override> overrides;
+    for (const std::string& s : sets) {
+        overrides.push_back(parse_override(s));
+        if (doc.is_object())
+            create_parents(doc, overrides.back().pointer);
+    }
+    apply_overrides(doc, overrides, scene_path);
+    return doc;
+}
+
+StudyResult run_study(const StudySpec& spec, const std::function<void(const std::string&)>& log) {
+    if (spec.repeats < 1)
+        throw Error(ErrorKind::Usage, "--repeats must be >= 1");
+    std::set<std::string> keys;
+    for (const StudyAxis& a : spec.axes) {
+        for (const std::string& pointer : study_pointers(a.key)) {
+            if (!keys.insert(pointer).second)
+                throw Error(ErrorKind::Usage, "--vary: " + pointer + " is given twice");
+        }
+    }
+    auto say = [&](const std::string& line) {
+        if (log)
+            log(line);
+    };
+
+    std::vector<std::string> base = spec.sets;
+    if (spec.width > 0 && spec.height > 0) {
+        base.push_back("/film/width=" + std::to_string(spec.width));
+        base.push_back("/film/height=" + std::to_string(spec.height));
+    }
+    if (spec.spp > 0)
+        base.push_back("/film/spp=" + std::to_string(spec.spp));
+
+    StudyResult result;
+    result.scene = spec.scene_path;
+    result.axes = spec.axes;
+    result.error = spec.error;
+
+    // Load and validate every configuration before rendering anything.
+    const auto combinations = expand_combinations(spec.axes);
+    std::vector<std::unique_ptr<SceneRuntime>> runtimes;
+    int largest_spp = 1;
+    for (const auto& combination : combinations) {
+        std::vector<std::string> sets = base;
+        StudyRow row;
+        for (size_t a = 0; a < spec.axes.size(); ++a) {
+            const std::string& value = spec.axes[a].values[combination[a]];
+            for (const std::string& pointer : study_pointers(spec.axes[a].key))
+                sets.push_back(pointer + "=" + value);
+            row.values.push_back(value);
+            row.label += (row.label.empty() ? "" : ", ") + spec.axes[a].key + "=" + as_word(value);
+        }
+        if (row.label.empty())
+            row.label = "scene as given";
+        runtimes.push_back(load_runtime(spec.scene_path, sets));
+        row.spp = runtimes.back()->desc().film.spp;
+        largest_spp = std::max(largest_spp, row.spp);
+        result.rows.push_back(row);
+    }
+    result.width = runtimes.front()->desc().film.width;
+    result.height = runtimes.front()->desc().film.height;
+
+    // Reference.
+    RgbPlane reference;
+    if (!spec.reference_file.empty()) {
+        reference = rgb_plane(read_exr(spec.reference_file), spec.reference_file);
+        if (reference.width != result.width || reference.height != result.height) {
+            throw_input_error(spec.reference_file + ": reference is " +
+                              std::to_string(reference.width) + "x" +
+                              std::to_string(reference.height) + ", the study renders " +
+                              std::to_string(result.width) + "x" + std::to_string(result.height));
+        }
+        result.reference.description = "file " + spec.reference_file;
+    } else {
+        std::vector<std::string> sets = base;
+        std::vector<std::string> chosen;
+        for (const StudyAxis& a : spec.axes) {
+            if (a.key == "spp")
+                continue;
+            for (const std::string& pointer : study_pointers(a.key))
+                chosen.push_back(pointer + "=" + most_accurate_value(a));
+        }
+        for (const std::string& s : spec.reference_sets)
+            chosen.push_back(s);
+        sets.insert(sets.end(), chosen.begin(), chosen.end());
+        const int ref_spp =
+            spec.reference_spp > 0 ? spec.reference_spp : std::max(256, 16 * largest_spp);
+        const int half = std::max(1, ref_spp / 2);
+        const uint64_t seed = runtimes.front()->desc().render.seed;
+        RgbPlane halves[2];
+        for (int h = 0; h < 2; ++h) {
+            std::vector<std::string> half_sets = sets;
+            half_sets.push_back("/film/spp=" + std::to_string(half));
+            // Seeds apart from the studied renders' so reference and test noise are independent.
+            half_sets.push_back("/render/seed=" + std::to_string(seed + 1000003u * (h + 1)));
+            const auto runtime = load_runtime(spec.scene_path, half_sets);
+            const RenderResult r = render_quietly(*runtime, spec.threads);
+            result.reference.seconds += r.seconds;
+            halves[h] = rgb_plane(r.film.to_image(), "reference");
+            say("reference half " + std::to_string(h + 1) + "/2: " + std::to_string(half) +
+                " spp, " + std::to_string(r.seconds) + " s");
+        }
+        reference = average(halves[0], halves[1]);
+        result.reference.has_standard_error = true;
+        result.reference.standard_error =
+            reference_standard_error(halves[0], halves[1], spec.error);
+        result.reference.description =
+            std::to_string(2 * half) + " spp (two independent halves of " + std::to_string(half) +
+            ")" + (chosen.empty() ? std::string() : ", " + join_sets(chosen));
+    }
+
+    // Timed renders, interleaved: each repeat visits every configuration, starting one further
+    // along each time, so a drift in machine load touches all configurations alike.
+    const size_t n = runtimes.size();
+    for (int r = 0; r < spec.repeats; ++r) {
+        for (size_t k = 0; k < n; ++k) {
+            const size_t c = (k + static_cast<size_t>(r)) % n;
+            const RenderResult rendered = render_quietly(*runtimes[c], spec.threads);
+            StudyRow& row = result.rows[c];
+            row.seconds.push_back(rendered.seconds);
+            if (row.seconds.size() == 1)
+                row.error = image_error(rgb_plane(rendered.film.to_image(), row.label), reference,
+                                        spec.error);
+            char line[160];
+            std::snprintf(line, sizeof line, "[repeat %d/%d] %s: %.3f s, rel MSE %.3g", r + 1,
+                          spec.repeats, row.label.c_str(), rendered.seconds, row.error.rel_mse);
+            say(line);
+        }
+    }
+
+    std::vector<double> times, errors;
+    for (StudyRow& row : result.rows) {
+        row.median_seconds = median(row.seconds);
+        const double work = row.error.rel_mse * row.median_seconds;
+        row.efficiency = work > 0.0 ? 1.0 / work : INFINITY;
+        times.push_back(row.median_seconds);
+        errors.push_back(row.error.rel_mse);
+    }
+    for (size_t i : pareto_front(times, errors))
+        result.rows[i].pareto = true;
+    return result;
+}
+
+}  // namespace kasumi

@@ -1,0 +1,95 @@
+#pragma once
+/// `kasumi study`: renders a scene at every combination of varied settings, times each render
+/// (median of repeats, interleaved across configurations) and measures its error against a
+/// reference image. docs/study.md describes the method and the shipped studies.
+#include "core/json_node.h"
+#include "render/study_metrics.h"
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+/// One varied setting: a JSON pointer into the scene (or "spp", read as /film/spp), or several
+/// joined by '+' that all take the same value (e.g. "/lights/0/samples+/lights/1/samples"),
+/// and the values it takes, each as the text of a JSON value (a bare word is a string).
+struct StudyAxis {
+    std::string key;
+    std::vector<std::string> values;
+};
+
+/// Parses "KEY=V1,V2,..." (commas inside [] {} or quotes do not split). Throws ErrorKind::Usage
+/// if a part of the key is neither "spp" nor a JSON pointer, a value is empty, or a value repeats.
+StudyAxis parse_vary(const std::string& text);
+
+/// The JSON pointers a study key sets ("spp" -> "/film/spp"; '+' separates several).
+std::vector<std::string> study_pointers(const std::string& key);
+
+/// Every combination of the axes' values, as one value index per axis; the last axis varies
+/// fastest. No axes: one empty combination.
+std::vector<std::vector<size_t>> expand_combinations(const std::vector<StudyAxis>& axes);
+
+/// The value of `axis` taken to be the most accurate, for the automatic reference: the
+/// smallest number for keys naming a step, tolerance or error, the largest number otherwise
+/// (spp, samples, depth, resolution); for words, "multiple" over "single" and, among
+/// transmittance estimators, "ratio" (unbiased, lower variance than delta tracking, no
+/// dependence on a minorant); otherwise the last value listed.
+std::string most_accurate_value(const StudyAxis& axis);
+
+struct StudySpec {
+    std::string scene_path;
+    std::vector<StudyAxis> axes;
+    std::vector<std::string> sets;  ///< --set overrides applied to every render, /pointer=VALUE
+    int width = 0, height = 0;      ///< 0: the scene's film size
+    int spp = 0;                    ///< 0: the scene's film.spp (an "spp" axis overrides it)
+    int repeats = 3;                ///< timed renders per configuration, median reported
+    int threads = 0;                ///< 0: all hardware threads
+    std::string reference_file;     ///< empty: automatic reference
+    int reference_spp = 0;          ///< automatic reference spp; 0: max(256, 16 x largest spp)
+    std::vector<std::string> reference_sets;  ///< extra /pointer=VALUE for the reference only
+    ErrorSettings error;
+};
+
+/// One configuration's measurements.
+struct StudyRow {
+    std::vector<std::string> values;  ///< per axis
+    std::string label;                ///< "key=value, key=value"
+    int spp = 0;
+    std::vector<double> seconds;  ///< render time of every repeat (load and BVH excluded)
+    double median_seconds = 0.0;
+    ImageError error;
+    bool pareto = false;  ///< on the Pareto front of (median time, relative MSE)
+    /// Monte Carlo efficiency 1 / (rel_mse * time): higher buys more accuracy per second.
+    double efficiency = 0.0;
+};
+
+struct StudyReference {
+    std::string description;  ///< how it was made (settings, spp) or the file
+    bool has_standard_error = false;
+    ImageError standard_error;  ///< from two independent half-spp renders (automatic only)
+    double seconds = 0.0;       ///< time to render it
+};
+
+struct StudyResult {
+    std::string scene;
+    int width = 0, height = 0;
+    std::vector<StudyAxis> axes;
+    std::vector<StudyRow> rows;  ///< in expand_combinations order
+    StudyReference reference;
+    ErrorSettings error;
+};
+
+/// Runs the study. `log` (may be empty) receives one line per finished render. Every
+/// configuration is loaded and validated before the first render, so a bad value fails fast
+/// with the scene's file and JSON pointer (ErrorKind::Input).
+StudyResult run_study(const StudySpec& spec,
+                      const std::function<void(const std::string&)>& log = {});
+
+/// Scene document for one configuration: `sets` then the axis values applied to the file;
+/// missing parent objects along each pointer are created.
+Json study_document(const std::string& scene_path, const std::vector<std::string>& sets);
+
+}  // namespace kasumi

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# End-to-end checks of `kasumi study`: a 2x2 study at a tiny resolution writes study.csv (one
+# row per combination, the Pareto front marked), study.md and study.svg; bad arguments are usage
+# errors (exit 2) and bad values input errors naming the file and JSON pointer (exit 3), with no
+# output written.
+# usage: study_cli_test.sh KASUMI_BINARY SOURCE_DIR
+set -u
+kasumi="$1"
+src="$2"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+expect_exit() {  # CODE PATTERN -- ARGS...
+  local code="$1" pattern="$2"
+  shift 3
+  "$kasumi" "$@" >"$work/stdout" 2>"$work/stderr"
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    fail "kasumi $* exited $got, expected $code; stderr: $(head -c 400 "$work/stderr")"
+  elif [ -n "$pattern" ] && ! grep -qE -- "$pattern" "$work/stderr"; then
+    fail "kasumi $* stderr lacks /$pattern/: $(head -c 400 "$work/stderr")"
+  fi
+}
+
+cat >"$work/fog.json" <<JSON
+{
+  "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+  "film": {"width": 320, "height": 200, "spp": 64},
+  "lights": [{"type": "point", "position": [0.5, 1, 0], "intensity_cd": 100}],
+  "media": [{"type": "homogeneous", "bounds": [[-3, -3, -3], [3, 3, 3]],
+             "sigma_a": 0.05, "sigma_s": 0.3, "phase": {"model": "hg", "g": 0.5}}],
+  "render": {"seed": 2}
+}
+JSON
+
+expect_exit 0 "wrote" -- study "$work/fog.json" --vary /render/volume/step_m=0.5,0.1 \
+  --vary spp=1,8 --res 12x8 --repeats 2 --reference-spp 128 --threads 1 -o "$work/s1"
+for f in study.csv study.md study.svg; do
+  [ -s "$work/s1/$f" ] || fail "study wrote no $f"
+done
+ls -a "$work/s1" | grep -q tmp && fail "study left a temporary file"
+if [ -s "$work/s1/study.csv" ]; then
+  python3 - "$work/s1/study.csv" <<'PY' || fail "study.csv content"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 4, rows
+assert [r["/render/volume/step_m"] for r in rows] == ["0.5", "0.5", "0.1", "0.1"], rows
+assert [r["spp"] for r in rows] == ["1", "8", "1", "8"], rows
+assert all(r["repeats"] == "2" for r in rows), rows
+assert any(r["pareto"] == "1" for r in rows), rows
+# More samples at the same step cut the error (variance ~ 1/spp; 8x fewer samples leave
+# several times the relative MSE).
+for step in ("0.5", "0.1"):
+    e = {r["spp"]: float(r["rel_mse"]) for r in rows if r["/render/volume/step_m"] == step}
+    assert e["1"] > 2 * e["8"], e
+PY
+fi
+grep -q "Reference: 128 spp" "$work/s1/study.md" || fail "study.md does not describe the reference"
+grep -q "<svg" "$work/s1/study.svg" || fail "study.svg is not an SVG"
+
+# A reference file of the wrong size is an input error.
+expect_exit 0 "" -- render "$work/fog.json" --res 6x4 --spp 4 -o "$work/small.exr" --no-preview -q
+expect_exit 3 "reference is 6x4" -- study "$work/fog.json" --vary spp=1,2 --res 12x8 \
+  --reference "$work/small.exr" -o "$work/s2"
+[ -e "$work/s2" ] && fail "a failed study created its output directory"
+
+expect_exit 2 "KEY=V1" -- study "$work/fog.json" --vary spp -o "$work/s3"
+expect_exit 2 "JSON pointer" -- study "$work/fog.json" --vary step_m=1,2 -o "$work/s3"
+expect_exit 2 "given twice" -- study "$work/fog.json" --vary spp=1,2 --vary /film/spp=3 -o "$work/s3"
+expect_exit 2 "" -- study "$work/fog.json" --vary spp=1,2
+expect_exit 3 "fog.json: /render/volume/step_m" -- study "$work/fog.json" \
+  --vary /render/volume/step_m=0.1,-1 --res 4x4 -o "$work/s3"
+[ -e "$work/s3" ] && fail "a failed study created its output directory"
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "study CLI: all checks passed"

@@ -1,0 +1,232 @@
+// kasumi study: error metrics on synthetic images (exact), the standard error of a two-half
+// reference, the Pareto front on known points, combination expansion and --vary parsing.
+#include "render/study.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "render/study_report.h"
+#include "render/svg_plot.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+namespace kasumi {
+namespace {
+
+RgbPlane plane(int w, int h, std::vector<Rgb> pixels) {
+    return RgbPlane{w, h, std::move(pixels)};
+}
+
+TEST(StudyMetrics, ExactOnSyntheticImages) {
+    // Reference luminances 1, 3 and 0.05: mean Ybar = 4.05 / 3 = 1.35, floor 0.1 Ybar = 0.135,
+    // so the dark third pixel does not enter the max relative error.
+    const RgbPlane reference = plane(3, 1, {Rgb(1.0f), Rgb(3.0f), Rgb(0.05f)});
+    const RgbPlane test = plane(3, 1, {Rgb(1.5f), Rgb(3.0f), Rgb(0.25f)});
+    const ImageError e = image_error(test, reference);
+    const double ybar = (1.0 + 3.0 + 0.05) / 3.0;
+    const double eps = (0.01 * ybar) * (0.01 * ybar);
+    EXPECT_NEAR(e.eps, eps, 1e-9);
+    EXPECT_NEAR(e.luminance_floor, 0.1 * ybar, 1e-7);
+    // Squared differences per channel: 0.25, 0, 0.04 (three channels each, nine in all).
+    EXPECT_NEAR(e.rmse, std::sqrt(3.0 * (0.25 + 0.04) / 9.0), 1e-6);
+    const double rel = 3.0 * (0.25 / (1.0 + eps) + 0.04 / (0.0025 + eps)) / 9.0;
+    EXPECT_NEAR(e.rel_mse, rel, 1e-6 * rel);
+    EXPECT_NEAR(e.max_rel_luminance, 0.5, 1e-6);  // not 4.0 from the dark pixel
+    EXPECT_EQ(e.pixels_above_floor, 2u);
+    EXPECT_NEAR(e.mean_luminance_error, (4.75 - 4.05) / 4.05, 1e-6);
+}
+
+TEST(StudyMetrics, ZeroForIdenticalImagesAndScaleFree) {
+    const RgbPlane a = plane(2, 1, {Rgb(0.2f, 0.5f, 0.9f), Rgb(4.0f, 1.0f, 0.0f)});
+    EXPECT_EQ(image_error(a, a).rmse, 0.0);
+    EXPECT_EQ(image_error(a, a).rel_mse, 0.0);
+    // Relative MSE and max relative error do not change when both images scale by 1000.
+    RgbPlane b = a, a1000 = a, b1000 = a;
+    b.pixels[0].g = 0.6f;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        a1000.pixels[i] = a.pixels[i] * 1000.0f;
+        b1000.pixels[i] = b.pixels[i] * 1000.0f;
+    }
+    const ImageError small = image_error(b, a), large = image_error(b1000, a1000);
+    EXPECT_NEAR(large.rel_mse, small.rel_mse, 1e-5 * small.rel_mse);
+    EXPECT_NEAR(large.max_rel_luminance, small.max_rel_luminance, 1e-5);
+    EXPECT_NEAR(large.rmse, 1000.0 * small.rmse, 1e-3 * large.rmse);
+}
+
+TEST(StudyMetrics, SizeMismatchIsAnInputError) {
+    try {
+        image_error(plane(1, 1, {Rgb(1.0f)}), plane(2, 1, {Rgb(1.0f), Rgb(1.0f)}));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Input);
+    }
+}
+
+TEST(StudyMetrics, ReferenceStandardErrorExact) {
+    // Halves 1 + d and 1 - d: the mean is 1 and (a - b)^2 / 4 = d^2 everywhere.
+    const float d = 0.1f;
+    const RgbPlane a = plane(2, 1, {Rgb(1.0f + d), Rgb(1.0f + d)});
+    const RgbPlane b = plane(2, 1, {Rgb(1.0f - d), Rgb(1.0f - d)});
+    const ImageError e = reference_standard_error(a, b);
+    EXPECT_NEAR(e.rmse, d, 1e-6);
+    EXPECT_NEAR(e.rel_mse, d * d / (1.0 + e.eps), 1e-6);
+}
+
+TEST(StudyMetrics, ReferenceStandardErrorMatchesGaussianNoise) {
+    // Halves are mu + N(0, s^2) per pixel and channel: their mean has standard error s / sqrt(2).
+    // The estimate averages 3 x 10^4 terms (a - b)^2 / 4 whose relative standard deviation is
+    // sqrt(2): the estimated variance is within 5% (6 standard deviations; false-failure rate
+    // ~1e-9, and the seed is fixed).
+    const int n = 10000;
+    const float mu = 5.0f, s = 0.3f;
+    Pcg32 rng(12345u, 7u);
+    auto gauss = [&] {
+        const float u1 = std::max(rng.next_float(), 1e-7f), u2 = rng.next_float();
+        return std::sqrt(-2.0f * std::log(u1)) * std::cos(6.2831853f * u2);
+    };
+    RgbPlane a{n, 1, {}}, b{n, 1, {}};
+    for (int i = 0; i < n; ++i) {
+        a.pixels.push_back(Rgb(mu + s * gauss(), mu + s * gauss(), mu + s * gauss()));
+        b.pixels.push_back(Rgb(mu + s * gauss(), mu + s * gauss(), mu + s * gauss()));
+    }
+    const ImageError e = reference_standard_error(a, b);
+    EXPECT_NEAR(e.rmse * e.rmse, s * s / 2.0, 0.05 * s * s / 2.0);
+}
+
+TEST(StudyPareto, KnownPoints) {
+    // (time, error): 0 (1, 10) front; 1 (2, 5) front; 2 (3, 6) dominated by 1; 3 (4, 1) front;
+    // 4 (2, 5) duplicate of 1 (first kept); 5 (0.5, 20) front; 6 (5, 1) dominated by 3.
+    const std::vector<double> time{1, 2, 3, 4, 2, 0.5, 5};
+    const std::vector<double> error{10, 5, 6, 1, 5, 20, 1};
+    EXPECT_EQ(pareto_front(time, error), (std::vector<size_t>{5, 0, 1, 3}));
+    EXPECT_TRUE(pareto_front({}, {}).empty());
+    EXPECT_EQ(pareto_front({3.0}, {2.0}), (std::vector<size_t>{0}));
+}
+
+TEST(StudyAxes, CombinationsLastAxisFastest) {
+    const std::vector<StudyAxis> axes{{"/a", {"1", "2"}}, {"spp", {"1", "4", "16"}}};
+    const auto c = expand_combinations(axes);
+    ASSERT_EQ(c.size(), 6u);
+    EXPECT_EQ(c[0], (std::vector<size_t>{0, 0}));
+    EXPECT_EQ(c[1], (std::vector<size_t>{0, 1}));
+    EXPECT_EQ(c[2], (std::vector<size_t>{0, 2}));
+    EXPECT_EQ(c[3], (std::vector<size_t>{1, 0}));
+    EXPECT_EQ(c[5], (std::vector<size_t>{1, 2}));
+    EXPECT_EQ(expand_combinations({}).size(), 1u);
+    EXPECT_EQ(
+        expand_combinations({{"/a", {"1"}}, {"/b", {"x", "y"}}, {"/c", {"1", "2", "3"}}}).size(),
+        6u);
+}
+
+ErrorKind kind_of(const std::string& text) {
+    try {
+        parse_vary(text);
+    } catch (const Error& e) {
+        return e.kind();
+    }
+    return ErrorKind::Runtime;  // did not throw
+}
+
+TEST(StudyAxes, ParseVary) {
+    const StudyAxis a = parse_vary("/render/volume/step_m=0.1,0.2,0.4");
+    EXPECT_EQ(a.key, "/render/volume/step_m");
+    EXPECT_EQ(a.values, (std::vector<std::string>{"0.1", "0.2", "0.4"}));
+    const StudyAxis arrays = parse_vary("/media/0/sigma_s=[0.1,0.2,0.3],0.5,\"a,b\"");
+    EXPECT_EQ(arrays.values, (std::vector<std::string>{"[0.1,0.2,0.3]", "0.5", "\"a,b\""}));
+    EXPECT_EQ(parse_vary("spp=1,4").key, "spp");
+    EXPECT_EQ(study_pointers("spp"), (std::vector<std::string>{"/film/spp"}));
+    EXPECT_EQ(study_pointers("/lights/0/samples+/lights/1/samples"),
+              (std::vector<std::string>{"/lights/0/samples", "/lights/1/samples"}));
+    EXPECT_EQ(kind_of("/lights/0/samples+samples=1,2"), ErrorKind::Usage);
+    EXPECT_EQ(kind_of("step_m"), ErrorKind::Usage);              // no '='
+    EXPECT_EQ(kind_of("step_m=1,2"), ErrorKind::Usage);          // not a pointer
+    EXPECT_EQ(kind_of("/render/seed=1,,2"), ErrorKind::Usage);   // empty value
+    EXPECT_EQ(kind_of("/render/seed=1,2,1"), ErrorKind::Usage);  // repeated value
+    EXPECT_EQ(kind_of("spp=4,2.5"), ErrorKind::Usage);           // not an integer
+    EXPECT_EQ(kind_of("spp=0"), ErrorKind::Usage);
+    EXPECT_EQ(kind_of("=1"), ErrorKind::Usage);
+}
+
+TEST(StudyAxes, MostAccurateValue) {
+    EXPECT_EQ(most_accurate_value(parse_vary("/render/volume/step_m=0.4,0.1,0.2")), "0.1");
+    EXPECT_EQ(most_accurate_value(parse_vary("/lights/0/samples=1,16,4")), "16");
+    EXPECT_EQ(most_accurate_value(parse_vary("/render/volume/integrator=multiple,single")),
+              "multiple");
+    EXPECT_EQ(most_accurate_value(parse_vary("/render/volume/estimator=march,delta,ratio")),
+              "ratio");
+}
+
+TEST(StudyDocument, CreatesMissingParents) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("kasumi_study_doc_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "s.json").string();
+    std::ofstream(path) << R"({"film": {"width": 4}})";
+    const Json doc = study_document(path, {"/render/volume/step_m=0.5", "/film/spp=3"});
+    EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(), 0.5);
+    EXPECT_EQ(doc["film"]["spp"].get<int>(), 3);
+    EXPECT_EQ(doc["film"]["width"].get<int>(), 4);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(SvgPlot, OneLinePerSeriesAndFrontRings) {
+    LogLogPlot plot;
+    plot.title = "a < b";
+    plot.series = {{"s1", {{0.1, 1.0}, {1.0, 0.1}}}, {"s2", {{0.2, 2.0}, {0.0, 1.0}}}};
+    plot.front = {{0.1, 1.0}, {1.0, 0.1}};
+    const std::string svg = svg_loglog(plot);
+    size_t polylines = 0;
+    for (size_t p = svg.find("<polyline"); p != std::string::npos; p = svg.find("<polyline", p + 1))
+        ++polylines;
+    EXPECT_EQ(polylines, 3u);  // two series and the front
+    EXPECT_NE(svg.find("a &lt; b"), std::string::npos);
+    EXPECT_EQ(svg.rfind("</svg>\n"), svg.size() - 7);
+    // Three plottable series points (the x = 0 one is left out) plus two rings and a legend ring.
+    size_t circles = 0;
+    for (size_t p = svg.find("<circle"); p != std::string::npos; p = svg.find("<circle", p + 1))
+        ++circles;
+    EXPECT_EQ(circles, 6u);
+}
+
+TEST(StudyRun, ErrorFallsWithSamplesAndFilesAreWritten) {
+    // Homogeneous fog lit by a point light, 12x8 pixels. Monte Carlo variance falls as 1/spp
+    // and the 512-spp reference adds its own: MSE(1 spp) ~ s^2 (1 + 1/512) against
+    // MSE(16 spp) ~ s^2 (1/16 + 1/512), a ratio near 15; asserting 4 leaves a wide margin.
+    // Seeds are fixed, so the test is deterministic.
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("kasumi_study_run_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "fog.json").string();
+    std::ofstream(path) << R"({
+      "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+      "film": {"width": 12, "height": 8, "spp": 1},
+      "lights": [{"type": "point", "position": [0.5, 1, 0], "intensity_cd": 100}],
+      "media": [{"type": "homogeneous", "bounds": [[-3, -3, -3], [3, 3, 3]],
+                 "sigma_a": 0.05, "sigma_s": 0.3}],
+      "render": {"seed": 3, "threads": 1}
+    })";
+    StudySpec spec;
+    spec.scene_path = path;
+    spec.axes = {parse_vary("spp=1,16")};
+    spec.repeats = 1;
+    spec.threads = 1;
+    spec.reference_spp = 512;
+    const StudyResult r = run_study(spec);
+    ASSERT_EQ(r.rows.size(), 2u);
+    EXPECT_EQ(r.rows[0].spp, 1);
+    EXPECT_EQ(r.rows[1].spp, 16);
+    EXPECT_GT(r.rows[0].error.rel_mse, 4.0 * r.rows[1].error.rel_mse);
+    EXPECT_TRUE(r.reference.has_standard_error);
+    EXPECT_LT(r.reference.standard_error.rel_mse, r.rows[1].error.rel_mse);
+    write_study(r, (dir / "out").string());
+    for (const char* f : {"study.csv", "study.md", "study.svg"})
+        EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace kasumi
