@@ -1,0 +1,70 @@
+#include "render/photon_settings.h"
+
+#include <string>
+
+namespace kasumi {
+
+namespace {
+
+uint64_t parse_count(const JsonNode& node) {
+    const int64_t v = node.as_int();
+    if (v < 0 || v > 100000000)
+        node.fail("must be an integer in [0, 100000000]");
+    return static_cast<uint64_t>(v);
+}
+
+int parse_int(const JsonNode& node, int64_t lo, int64_t hi) {
+    const int64_t v = node.as_int();
+    if (v < lo || v > hi)
+        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(v);
+}
+
+}  // namespace
+
+const char* photon_filter_name(PhotonFilter filter) {
+    switch (filter) {
+        case PhotonFilter::Box:
+            return "box";
+        case PhotonFilter::Cone:
+            return "cone";
+        case PhotonFilter::Epanechnikov:
+            return "epanechnikov";
+    }
+    return "cone";
+}
+
+PhotonSettings parse_photon_settings(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    PhotonSettings s;
+    if (auto v = reader.optional("global_count"))
+        s.global_count = parse_count(*v);
+    if (auto v = reader.optional("caustic_count"))
+        s.caustic_count = parse_count(*v);
+    if (auto v = reader.optional("volume_count"))
+        s.volume_count = parse_count(*v);
+    if (auto v = reader.optional("k"))
+        s.k = parse_int(*v, 1, 10000);
+    if (auto v = reader.optional("max_radius_m"))
+        s.max_radius_m = v->positive();
+    if (auto v = reader.optional("final_gather_samples"))
+        s.final_gather_samples = parse_int(*v, 0, 4096);
+    if (auto v = reader.optional("max_bounces"))
+        s.max_bounces = parse_int(*v, 1, 1024);
+    if (auto v = reader.optional("filter")) {
+        const std::string name = v->as_string();
+        if (name == "box") {
+            s.filter = PhotonFilter::Box;
+        } else if (name == "cone") {
+            s.filter = PhotonFilter::Cone;
+        } else if (name == "epanechnikov") {
+            s.filter = PhotonFilter::Epanechnikov;
+        } else {
+            v->fail("expected \"box\", \"cone\" or \"epanechnikov\"");
+        }
+    }
+    reader.finish();
+    return s;
+}
+
+}  // namespace kasumi
