@@ -1,5 +1,6 @@
 #include "render/plan.h"
 
+#include "render/quality_plan.h"
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
 
@@ -131,11 +132,13 @@ Plan make_plan(const SceneDesc& scene) {
                           ", Russian roulette from the third scattering"
                     : "render.volume.integrator is \"single\": light scattered more than once "
                       "is left out"});
+    plan.stages.push_back(scattering_bound_plan_stage(scene, plan));
     plan.stages.push_back({"background", max_component(scene.background) > 0.0f,
                            max_component(scene.background) > 0.0f ? "constant background radiance"
                                                                   : "black background"});
     for (const SkyPlanStage& s : sky_plan_stages(scene.sky.get()))
         plan.stages.push_back({s.name, s.enabled, s.reason});
+    plan.stages.push_back(quality_plan_stage(scene));
     return plan;
 }
 

@@ -3,6 +3,7 @@
 /// is built. Units: metres, lux, candela, cd/m², 1/m.
 #include "core/camera.h"
 #include "lights/light.h"
+#include "render/quality.h"
 #include "surface/material.h"
 #include "surface/shape.h"
 #include "volume/in_scattering.h"
@@ -41,6 +42,7 @@ struct RenderSettings {
     WhittedSettings whitted;
     SkySettings sky;  ///< render.sky, render.spectral, render.wavelengths_nm (docs/sky.md)
     PreviewDesc preview;
+    QualityChoice quality;  ///< render.quality and what it set (render/quality.h)
 };
 
 struct SceneDesc {

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "lights/light_json.h"
+#include "render/quality.h"
 #include "volume/medium_json.h"
 #include "volume/medium_set.h"
 #include "volume/sky_renderer.h"
@@ -116,6 +117,7 @@ RenderSettings parse_render(const JsonNode& node) {
             render.whitted.min_weight = weight->in_closed(0.0f, 1.0f);
         whitted.finish();
     }
+    reader.optional("quality");  // validated and applied by apply_quality (render/quality.h)
     if (auto v = reader.optional("preview")) {
         JsonObjectReader preview(*v);
         if (auto view = preview.optional("view"))
@@ -192,7 +194,9 @@ void apply_overrides(Json& root, const std::vector<Override>& overrides, const s
 }
 
 SceneDesc parse_scene(const Json& root_value, const std::string& file) {
-    const JsonNode root(root_value, file);
+    Json with_quality = root_value;
+    QualityChoice quality = apply_quality(with_quality, file);
+    const JsonNode root(with_quality, file);
     JsonObjectReader reader(root);
     SceneDesc scene;
     scene.file = file;
@@ -244,6 +248,8 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file) {
             MediumSet(scene.media).all_homogeneous() ? Estimator::March : Estimator::ResidualRatio;
     }
     parse_sky_keys(reader, scene.render.sky, scene.sky, scene.lights);
+    choose_integrator(with_quality, scene.media, scene.render.volume.integrator, quality);
+    scene.render.quality = quality;
     reader.optional("comment");  // free text for the scene's author
     reader.finish();
     return scene;

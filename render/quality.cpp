@@ -1,0 +1,240 @@
+#include "render/quality.h"
+
+#include "core/error.h"
+#include "volume/medium.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace kasumi {
+
+namespace {
+
+// The quality table. Every sampling value comes from the studies that bench/studies.sh runs
+// and docs/study.md reports (96x54 pixels, measured 2026-11-29 on the shared 2-core machine);
+// the expected errors are the relative MSE measured there. Final (64 spp): the 16-spp figure
+// divided by 4, as Monte Carlo variance falls as 1/spp for these unbiased settings.
+// Reference: the studies' own references have these settings, and their standard error was
+// measured from two independent halves (the cloud's at 512 spp, doubled for 256).
+// - fog_step_m, fog study (docs/studies/fog): the march of homogeneous fog is unbiased, the
+//   step only trades variance for time, and the coarse step buys the most accuracy per
+//   second (efficiency at 16 spp: 234 /s at 1.6 m, 190 at 0.8, 129 at 0.4, 80 at 0.2);
+//   final keeps 0.8 m (31% less error per sample for 1.8x the time), reference 0.2 m.
+// - grid_estimator, cloud estimator study (docs/studies/cloud-estimator): ratio tracking has
+//   the lowest error and the best efficiency at 16 spp (59 /s; residual ratio 39, delta 34,
+//   march 1.9).
+// - light_samples, soft-shadow study (docs/studies/soft-shadows): 4 shadow samples per light
+//   cut the error 5-15% against 1 for no measurable time; 16 cost 30% more time for ~3%.
+// - spp: 4 / 16 / 64 / 256; the single-scattering tolerances are the left-out light each level
+//   accepts (a policy; the cloud-scattering study measured single scattering 22% darker than
+//   multiple on cloud.json).
+constexpr QualityPreset kTable[] = {
+    {QualityLevel::Draft, 4, 1.6f, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008},
+    {QualityLevel::Default, 16, 1.6f, "ratio", 4, 0.1, 0.00134, 0.0358, 0.0073},
+    {QualityLevel::Final, 64, 0.8f, "ratio", 4, 0.02, 0.00023, 0.009, 0.0018},
+    {QualityLevel::Reference, 256, 0.2f, "ratio", 16, 0.0, 8.9e-5, 0.0028, 0.00023},
+};
+
+bool is_extended_light(const Json& light) {
+    if (!light.is_object() || !light.contains("type") || !light["type"].is_string())
+        return false;
+    const std::string type = light["type"].get<std::string>();
+    return type == "line" || type == "polygon" || type == "sphere";
+}
+
+std::string medium_type(const Json& medium) {
+    if (medium.is_object() && medium.contains("type") && medium["type"].is_string())
+        return medium["type"].get<std::string>();
+    return "";
+}
+
+std::string g3(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+/// Sets `pointer` to `value` unless the document has it; records which.
+void fill(Json& doc, const std::string& pointer, const Json& value, QualityChoice& choice) {
+    const Json::json_pointer p(pointer);
+    if (doc.contains(p)) {
+        choice.kept.push_back(pointer);
+        return;
+    }
+    Json* node = &doc;
+    const std::string parent = p.parent_pointer().to_string();
+    if (!parent.empty()) {
+        // Create the missing objects along the way (render/volume, film).
+        const Json::json_pointer pp(parent);
+        if (!doc.contains(pp))
+            doc[pp] = Json::object();
+        node = &doc[pp];
+        if (!node->is_object())
+            return;  // the loader reports the malformed value
+    }
+    doc[p] = value;
+    choice.applied.push_back(pointer + " = " + value.dump());
+}
+
+}  // namespace
+
+std::optional<QualityLevel> quality_from_name(const std::string& name) {
+    for (const QualityPreset& p : kTable) {
+        if (name == quality_name(p.level))
+            return p.level;
+    }
+    return std::nullopt;
+}
+
+const char* quality_name(QualityLevel level) {
+    switch (level) {
+        case QualityLevel::Draft:
+            return "draft";
+        case QualityLevel::Default:
+            return "default";
+        case QualityLevel::Final:
+            return "final";
+        case QualityLevel::Reference:
+            return "reference";
+    }
+    return "default";
+}
+
+const QualityPreset& quality_preset(QualityLevel level) {
+    return kTable[static_cast<int>(level)];
+}
+
+QualityChoice apply_quality(Json& doc, const std::string& file) {
+    QualityChoice choice;
+    if (!doc.is_object() || !doc.contains("render") || !doc["render"].is_object() ||
+        !doc["render"].contains("quality")) {
+        return choice;
+    }
+    const Json& q = doc["render"]["quality"];
+    std::optional<QualityLevel> level;
+    if (q.is_string())
+        level = quality_from_name(q.get<std::string>());
+    if (!level) {
+        throw_input_error(file + ": /render/quality = " + q.dump() +
+                          ": expected \"draft\", \"default\", \"final\" or \"reference\"");
+    }
+    choice.level = level;
+    const QualityPreset& preset = quality_preset(*level);
+    fill(doc, "/film/spp", preset.spp, choice);
+
+    bool homogeneous = false, grid = false;
+    if (doc.contains("media") && doc["media"].is_array()) {
+        for (const Json& m : doc["media"]) {
+            homogeneous = homogeneous || medium_type(m) == "homogeneous";
+            grid = grid || medium_type(m) == "vdb";
+        }
+    }
+    if (homogeneous)
+        fill(doc, "/render/volume/step_m", preset.fog_step_m, choice);
+    if (grid)
+        fill(doc, "/render/volume/estimator", preset.grid_estimator, choice);
+    bool extended = false;
+    if (doc.contains("lights") && doc["lights"].is_array()) {
+        for (size_t i = 0; i < doc["lights"].size(); ++i) {
+            if (is_extended_light(doc["lights"][i])) {
+                extended = true;
+                fill(doc, "/lights/" + std::to_string(i) + "/samples", preset.light_samples,
+                     choice);
+            }
+        }
+    }
+
+    // The studies' figure for each kind of content the scene holds.
+    std::string expected;
+    auto add = [&](const char* what, double rel_mse) {
+        if (rel_mse > 0.0)
+            expected += (expected.empty() ? "" : ", ") + std::string(what) + " " + g3(rel_mse);
+    };
+    if (homogeneous)
+        add("fog", preset.fog_rel_mse);
+    if (grid)
+        add("cloud", preset.cloud_rel_mse);
+    if (extended)
+        add("soft shadows", preset.shadow_rel_mse);
+    choice.expected_error =
+        expected.empty() ? "no study covers this scene's content"
+                         : "relative MSE measured by the studies at these settings: " + expected +
+                               " (docs/study.md; more where the scene's own spp or steps are "
+                               "coarser)";
+    return choice;
+}
+
+ScatteringBound scattering_bound(const std::vector<Medium>& media) {
+    ScatteringBound b;
+    for (const Medium& m : media) {
+        Rgb sigma_t_max{0.0f}, sigma_s_max{0.0f};
+        Bounds3 box;
+        bool bounded = true;
+        if (const auto* h = std::get_if<HomogeneousMedium>(&m.model)) {
+            sigma_t_max = h->sigma_t();
+            sigma_s_max = h->sigma_s;
+            bounded = h->bounds.has_value();
+            if (bounded)
+                box = *h->bounds;
+        } else if (const auto* v = std::get_if<VdbMedium>(&m.model)) {
+            const float d = v->grid ? v->grid->max_density() : 0.0f;
+            sigma_t_max = v->sigma_t_per_density() * d;
+            sigma_s_max = v->sigma_s_per_density * d;
+            box = v->bounds_world;
+        }
+        for (int c = 0; c < 3; ++c) {
+            if (sigma_t_max[c] > 0.0f) {
+                b.albedo = std::max(b.albedo, double(sigma_s_max[c]) / sigma_t_max[c]);
+                b.scatters = b.scatters || sigma_s_max[c] > 0.0f;
+            }
+        }
+        const double sigma = max_component(sigma_t_max);
+        if (!bounded) {
+            b.optical_depth = sigma > 0.0 ? INFINITY : b.optical_depth;
+            continue;
+        }
+        const Vec3 e = box.max - box.min;
+        const double volume = double(e.x) * e.y * e.z;
+        const double surface = 2.0 * (double(e.x) * e.y + double(e.y) * e.z + double(e.z) * e.x);
+        const double chord = surface > 0.0 ? 4.0 * volume / surface : 0.0;
+        b.optical_depth += sigma * chord;
+    }
+    const double p = 1.0 - std::exp(-b.optical_depth);
+    const double x = b.albedo * p;
+    b.bound = x < 1.0 ? x / (1.0 - x) : INFINITY;
+    return b;
+}
+
+std::string scattering_bound_text(const ScatteringBound& b) {
+    const std::string left_out = std::isinf(b.bound) ? "an unbounded amount"
+                                 : b.bound >= 1.0    ? "at most " + g3(b.bound) + " times"
+                                                     : "at most " + g3(100.0 * b.bound) + "%";
+    return "albedo " + g3(b.albedo) + ", optical thickness " + g3(b.optical_depth) +
+           " (mean chord): single scattering leaves out " + left_out +
+           " of the single-scattered light (bound omega p / (1 - omega p), p = 1 - exp(-tau))";
+}
+
+void choose_integrator(const Json& doc, const std::vector<Medium>& media,
+                       VolumeIntegrator& integrator, QualityChoice& choice) {
+    if (!choice.level)
+        return;
+    if (doc.contains(Json::json_pointer("/render/volume/integrator"))) {
+        choice.integrator = "render.volume.integrator given by the scene";
+        return;
+    }
+    const ScatteringBound b = scattering_bound(media);
+    if (!b.scatters) {
+        choice.integrator = "media do not scatter";
+        return;
+    }
+    const double tolerance = quality_preset(*choice.level).single_scattering_tolerance;
+    const bool single = b.bound <= tolerance;
+    integrator = single ? VolumeIntegrator::Single : VolumeIntegrator::Multiple;
+    choice.integrator = std::string(single ? "single" : "multiple") + " scattering chosen by " +
+                        quality_name(*choice.level) + " (tolerance " +
+                        (std::isinf(tolerance) ? std::string("any") : g3(100.0 * tolerance) + "%") +
+                        "): " + scattering_bound_text(b);
+}
+
+}  // namespace kasumi
