@@ -66,7 +66,7 @@ std::string study_csv(const StudyResult& result) {
     std::ostringstream out;
     for (const StudyAxis& a : result.axes)
         out << csv_field(a.key) << ",";
-    out << "spp,median_seconds,min_seconds,max_seconds,repeats,rmse,rel_mse,max_rel_luminance,"
+    out << "film_spp,median_seconds,min_seconds,max_seconds,repeats,rmse,rel_mse,max_rel_luminance,"
            "mean_luminance_error,efficiency,pareto\n";
     char buf[64];
     auto num = [&](double v) {

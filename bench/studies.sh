@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The accuracy-versus-time studies shipped in docs/study.md and the README: each line below runs
+# one `kasumi study` and writes docs/studies/<name>/study.{csv,md,svg}. Resolutions are small so
+# the whole script finishes in minutes on two shared cores.
+#
+# usage: bench/studies.sh [NAME...]     (no names: every study)
+#   KASUMI=path/to/kasumi  (default build/release/apps/kasumi)
+#   OUT=dir                (default docs/studies)
+#   THREADS=n              (default 2)
+# To add a study, add one `study NAME SCENE ARGS...` line (any `kasumi study` arguments).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+kasumi="$(realpath "${KASUMI:-$root/build/release/apps/kasumi}")"
+out="${OUT:-$root/docs/studies}"
+threads="${THREADS:-2}"
+selected=("$@")
+cd "$root"  # scene paths in the reports stay relative to the repository
+
+study() {  # NAME SCENE ARGS...
+  local name="$1" scene="$2"
+  shift 2
+  if [ "${#selected[@]}" -gt 0 ] && [[ ! " ${selected[*]} " =~ " $name " ]]; then
+    return 0
+  fi
+  echo "== $name: kasumi study $scene $*" >&2
+  local start=$SECONDS
+  "$kasumi" study "$scene" --threads "$threads" -q "$@" -o "$out/$name"
+  echo "   $name done in $((SECONDS - start)) s" >&2
+}
+
+# Fog: march step of the homogeneous fog x samples per pixel.
+study fog data/scenes/fog_street.json --res 96x54 --repeats 3 \
+  --vary /render/volume/step_m=1.6,0.8,0.4,0.2 --vary spp=1,4,16 --reference-spp 256
+
+# Cloud, multiple scattering: transmittance estimator x spp.
+study cloud-estimator data/scenes/cloud.json --res 96x54 --repeats 3 \
+  --vary /render/volume/estimator=march,delta,ratio,residual-ratio --vary spp=1,4,16 \
+  --reference-spp 512
+
+# Cloud, single scattering by the classic ray march: step (voxels) x spp, against an unbiased
+# single-scattering reference (ratio tracking).
+study cloud-step data/scenes/cloud.json --res 96x54 --repeats 3 \
+  --set /render/volume/integrator=single --set /render/volume/estimator=march \
+  --vary /render/volume/step_voxels=4,2,1,0.5 --vary spp=1,4,16 \
+  --reference-set /render/volume/estimator=ratio --reference-spp 512
+
+# Cloud: single against multiple scattering x spp (the reference is multiple scattering).
+study cloud-scattering data/scenes/cloud.json --res 96x54 --repeats 3 \
+  --vary /render/volume/integrator=single,multiple --vary spp=1,4,16 --reference-spp 512
+
+# Soft shadows: shadow samples of both area lights x spp.
+study soft-shadows data/scenes/soft_shadows.json --res 96x54 --repeats 3 \
+  --vary /lights/0/samples+/lights/1/samples=1,4,16 --vary spp=1,4,16 --reference-spp 256
