@@ -1,5 +1,6 @@
 #include "render/integrator.h"
 
+#include "render/gi.h"
 #include "render/whitted.h"
 
 #include "volume/transmittance.h"
@@ -36,8 +37,13 @@ class RenderPathEnvironment final : public PathEnvironment {
         if (m_scene.surfaces() != nullptr) {
             Ray unbounded = ray;
             unbounded.t_max = kInfinity;
-            if (const auto hit = m_scene.surfaces()->intersect(unbounded))
-                return shade_surface(m_scene, *hit, -ray.direction, rng, m_counters);
+            if (const auto hit = m_scene.surfaces()->intersect(unbounded)) {
+                if (m_scene.gi() != nullptr)
+                    return gi_surface_radiance(m_scene, unbounded, *hit, rng, m_counters);
+                return emitted_radiance(m_scene.desc().materials[hit->material], *hit,
+                                        -ray.direction) +
+                       shade_surface(m_scene, *hit, -ray.direction, rng, m_counters);
+            }
         }
         return m_scene.desc().background;
     }
@@ -139,7 +145,7 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
             t_end = hit->t;
             sample.depth = hit->t * glm::dot(ray.direction, scene.camera().forward());
             sample.albedo = albedo(scene.desc().materials[hit->material]);
-            sample.surface = shade_hit(scene, ray, *hit, rng, counters);
+            sample.surface = gi_surface_radiance(scene, ray, *hit, rng, counters);
         }
     }
     if (!sample.hit)

@@ -1,5 +1,6 @@
 #include "render/plan.h"
 
+#include "render/gi_plan.h"
 #include "render/quality_plan.h"
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
@@ -133,6 +134,7 @@ Plan make_plan(const SceneDesc& scene) {
                     : "render.volume.integrator is \"single\": light scattered more than once "
                       "is left out"});
     plan.stages.push_back(scattering_bound_plan_stage(scene, plan));
+    plan.stages.push_back(gi_plan_stage(scene));
     plan.stages.push_back({"background", max_component(scene.background) > 0.0f,
                            max_component(scene.background) > 0.0f ? "constant background radiance"
                                                                   : "black background"});

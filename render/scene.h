@@ -3,6 +3,7 @@
 /// is built. Units: metres, lux, candela, cd/m², 1/m.
 #include "core/camera.h"
 #include "lights/light.h"
+#include "render/gi_settings.h"
 #include "render/quality.h"
 #include "surface/material.h"
 #include "surface/shape.h"
@@ -41,6 +42,9 @@ struct RenderSettings {
     VolumeSettings volume;
     WhittedSettings whitted;
     SkySettings sky;  ///< render.sky, render.spectral, render.wavelengths_nm (docs/sky.md)
+    GiMode gi = GiMode::None;  ///< render.gi: global illumination method
+    PathSettings path;
+    RadiositySettings radiosity;
     PreviewDesc preview;
     QualityChoice quality;  ///< render.quality and what it set (render/quality.h)
 };

@@ -117,6 +117,12 @@ RenderSettings parse_render(const JsonNode& node) {
             render.whitted.min_weight = weight->in_closed(0.0f, 1.0f);
         whitted.finish();
     }
+    if (auto v = reader.optional("gi"))
+        render.gi = parse_gi_mode(*v);
+    if (auto v = reader.optional("path"))
+        render.path = parse_path_settings(*v);
+    if (auto v = reader.optional("radiosity"))
+        render.radiosity = parse_radiosity_settings(*v);
     reader.optional("quality");  // validated and applied by apply_quality (render/quality.h)
     if (auto v = reader.optional("preview")) {
         JsonObjectReader preview(*v);

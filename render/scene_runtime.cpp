@@ -1,5 +1,7 @@
 #include "render/scene_runtime.h"
 
+#include "render/gi.h"
+#include "render/gi_plan.h"
 namespace kasumi {
 
 bool SurfaceOcclusion::occluded(const Vec3& from, const Vec3& to) const {
@@ -27,6 +29,9 @@ SceneRuntime::SceneRuntime(SceneDesc desc)
         m_media = MediumSet(m_desc.media);
     if (m_desc.sky)
         m_sky = std::make_unique<SkyRenderer>(m_desc.sky, m_desc.camera.position);
+    m_gi = make_gi_method(*this);
+    if (m_gi)
+        add_gi_summary(m_plan, *m_gi);
 }
 
 }  // namespace kasumi

@@ -13,6 +13,8 @@
 
 namespace kasumi {
 
+class GiMethod;
+
 /// Occlusion by the scene's surfaces for the volume and surface stages.
 class SurfaceOcclusion final : public OcclusionQuery {
   public:
@@ -37,6 +39,8 @@ class SceneRuntime {
     const SkyRenderer* sky() const { return m_sky.get(); }
     /// Null when the plan has no shadow rays.
     const OcclusionQuery* occlusion() const { return m_occlusion.get(); }
+    /// The render.gi method and its precomputation (render/gi.h); null for "none".
+    const GiMethod* gi() const { return m_gi.get(); }
 
   private:
     SceneDesc m_desc;
@@ -46,6 +50,7 @@ class SceneRuntime {
     std::unique_ptr<SurfaceOcclusion> m_occlusion;
     MediumSet m_media;
     std::unique_ptr<SkyRenderer> m_sky;
+    std::shared_ptr<const GiMethod> m_gi;
 };
 
 }  // namespace kasumi

@@ -1,5 +1,6 @@
 #include "render/whitted.h"
 
+#include "render/gi.h"
 #include "render/integrator.h"
 #include "surface/fresnel.h"
 
@@ -83,13 +84,16 @@ Rgb shade_dielectric(const SceneRuntime& scene, const DielectricMaterial& glass,
 Rgb shade_hit(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit, Pcg32& rng,
               RenderCounters& counters, int depth, float weight) {
     const Material& material = scene.desc().materials[hit.material];
+    const Rgb emitted = emitted_radiance(material, hit, -ray.direction);
     if (const auto* mirror = std::get_if<MirrorMaterial>(&material))
-        return shade_mirror(scene, *mirror, ray, hit, rng, counters, depth, weight);
+        return emitted + shade_mirror(scene, *mirror, ray, hit, rng, counters, depth, weight);
     if (const auto* glass = std::get_if<DielectricMaterial>(&material))
-        return shade_dielectric(scene, *glass, ray, hit, rng, counters, depth, weight);
+        return emitted + shade_dielectric(scene, *glass, ray, hit, rng, counters, depth, weight);
+    if (const GiMethod* gi = scene.gi())
+        return emitted + gi->phong_radiance(scene, ray, hit, rng, counters);
     if (hit.shading == Shading::Gouraud)
-        return shade_gouraud(scene, ray, hit, rng, counters);
-    return shade_surface(scene, hit, -ray.direction, rng, counters);
+        return emitted + shade_gouraud(scene, ray, hit, rng, counters);
+    return emitted + shade_surface(scene, hit, -ray.direction, rng, counters);
 }
 
 Rgb trace_whitted_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,

@@ -84,6 +84,10 @@ Material parse_material(const JsonNode& node) {
     } else {
         type.fail("unknown material type (known types: dielectric, mirror, phong)");
     }
+    if (const auto e = reader.optional("emission_cd_m2")) {
+        const Rgb emitted = e->non_negative_rgb();
+        std::visit([&](auto& m) { m.emission = emitted; }, material);
+    }
     reader.finish();
     return material;
 }
@@ -95,6 +99,10 @@ Rgb albedo(const Material& m) {
         Rgb operator()(const DielectricMaterial& dielectric) const { return dielectric.tint; }
     };
     return std::visit(Visitor{}, m);
+}
+
+Rgb emission(const Material& m) {
+    return std::visit([](const auto& material) { return material.emission; }, m);
 }
 
 bool is_specular(const Material& m) {

@@ -28,11 +28,13 @@ struct PhongMaterial {
     Rgb ks{0.0f};
     float n = 20.0f;  ///< specular exponent, >= 0
     SpecularFresnel ks_fresnel = SpecularFresnel::None;
+    Rgb emission{0.0f};  ///< cd/m², Lambertian, from the front side (emitted_radiance)
 };
 
 /// A perfect mirror: reflects kr of the radiance arriving from the mirror direction.
 struct MirrorMaterial {
-    Rgb kr{1.0f};  ///< reflectance in [0, 1]
+    Rgb kr{1.0f};        ///< reflectance in [0, 1]
+    Rgb emission{0.0f};  ///< cd/m², Lambertian, from the front side (emitted_radiance)
 };
 
 /// A smooth dielectric interface (glass, water): exact Fresnel reflection, refraction with the
@@ -41,14 +43,20 @@ struct MirrorMaterial {
 struct DielectricMaterial {
     float ior = 1.5f;  ///< index of refraction relative to the outside medium, > 0
     Rgb tint{1.0f};    ///< transmittance factor per refraction, in [0, 1]
+    Rgb emission{0.0f};  ///< cd/m², Lambertian, from the front side (emitted_radiance)
 };
 
 using Material = std::variant<PhongMaterial, MirrorMaterial, DielectricMaterial>;
 
 /// Parses {"type": "phong", "ka", "kd", "ks", "n", "ks_fresnel"}, {"type": "mirror", "kr"} or
 /// {"type": "dielectric", "ior", "tint"}; reflectances are a scalar or [r, g, b] in [0, 1].
+/// Every type also takes "emission_cd_m2": a scalar L (white, luminance L) or [r, g, b] (scene-
+/// linear RGB radiance whose luminance is in cd/m²), >= 0, default 0: a Lambertian emitter.
 /// Bad values throw an input error naming the file and JSON path (never clamped).
 Material parse_material(const JsonNode& node);
+
+/// The material's emitted radiance (cd/m², RGB), the same in every direction of its front side.
+Rgb emission(const Material& m);
 
 /// Diffuse reflectance for the `albedo` AOV: Phong kd, mirror kr, dielectric tint.
 Rgb albedo(const Material& m);

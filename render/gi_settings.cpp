@@ -1,0 +1,89 @@
+#include "render/gi_settings.h"
+
+#include <filesystem>
+
+namespace kasumi {
+
+namespace {
+
+int int_in(const JsonNode& node, int64_t lo, int64_t hi) {
+    const int64_t v = node.as_int();
+    if (v < lo || v > hi)
+        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(v);
+}
+
+}  // namespace
+
+const char* gi_mode_name(GiMode mode) {
+    switch (mode) {
+        case GiMode::None:
+            return "none";
+        case GiMode::Radiosity:
+            return "radiosity";
+        case GiMode::Photons:
+            return "photons";
+        case GiMode::Path:
+            return "path";
+    }
+    return "none";
+}
+
+GiMode parse_gi_mode(const JsonNode& node) {
+    const std::string name = node.as_string();
+    for (const GiMode mode : {GiMode::None, GiMode::Radiosity, GiMode::Photons, GiMode::Path}) {
+        if (name == gi_mode_name(mode))
+            return mode;
+    }
+    node.fail("expected \"none\", \"radiosity\", \"photons\" or \"path\"");
+}
+
+PathSettings parse_path_settings(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    PathSettings path;
+    if (auto v = reader.optional("max_depth"))
+        path.max_depth = int_in(*v, 0, 1024);
+    if (auto v = reader.optional("rr_depth"))
+        path.rr_depth = int_in(*v, 1, 1024);
+    reader.finish();
+    return path;
+}
+
+RadiositySettings parse_radiosity_settings(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    RadiositySettings r;
+    if (auto v = reader.optional("patch_size_m"))
+        r.patch_size_m = v->positive();
+    if (auto v = reader.optional("max_subdivision"))
+        r.max_subdivision = int_in(*v, 0, 8);
+    if (auto v = reader.optional("refine_threshold"))
+        r.refine_threshold = v->positive();
+    if (auto v = reader.optional("solver")) {
+        const std::string name = v->as_string();
+        if (name == "shooting") {
+            r.solver = RadiositySolver::Shooting;
+        } else if (name == "gauss-seidel") {
+            r.solver = RadiositySolver::GaussSeidel;
+        } else {
+            v->fail("expected \"shooting\" or \"gauss-seidel\"");
+        }
+    }
+    if (auto v = reader.optional("tolerance"))
+        r.tolerance = v->in_open(0.0f, 1.0f);
+    if (auto v = reader.optional("max_iterations"))
+        r.max_iterations = int_in(*v, 1, 100000000);
+    if (auto v = reader.optional("form_factor_samples"))
+        r.form_factor_samples = int_in(*v, 1, 256);
+    if (auto v = reader.optional("cache")) {
+        std::filesystem::path path(v->as_string());
+        if (path.empty())
+            v->fail("must be a file name");
+        if (path.is_relative())
+            path = std::filesystem::path(v->file()).parent_path() / path;
+        r.cache = path.lexically_normal().string();
+    }
+    reader.finish();
+    return r;
+}
+
+}  // namespace kasumi
