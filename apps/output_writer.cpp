@@ -43,6 +43,14 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
         {"kasumi/stats/volume_steps", std::to_string(c.volume_steps)},
         {"kasumi/stats/volume_shadow_rays", std::to_string(c.volume_shadow_rays)},
         {"kasumi/stats/nonfinite_samples", std::to_string(c.nonfinite_samples)},
+        {"kasumi/stats/density_lookups", std::to_string(c.density_lookups)},
+        {"kasumi/stats/transmittance_rays", std::to_string(c.transmittance_rays)},
+        {"kasumi/stats/free_flights", std::to_string(c.free_flights)},
+        {"kasumi/stats/scattering_events", std::to_string(c.scattering_events)},
+        {"kasumi/stats/threads", std::to_string(result.threads)},
+        {"kasumi/stats/density_lookups_per_s_per_core",
+         std::to_string(render_rates(c, result.seconds, result.threads)
+                            .density_lookups_per_s_per_core)},
     };
     make_parent_dirs(paths.exr);
     write_exr(image, paths.exr);
@@ -70,6 +78,16 @@ std::string format_stats(const SceneRuntime& scene, const RenderResult& result) 
     out << "  volume shadow rays  " << c.volume_shadow_rays << "\n";
     out << "  bvh built           " << (scene.surfaces() != nullptr ? "yes" : "no") << "\n";
     out << "  non-finite samples  " << c.nonfinite_samples << "\n";
+    out << "  density lookups     " << c.density_lookups << "\n";
+    out << "  transmittance rays  " << c.transmittance_rays << "\n";
+    out << "  free flights        " << c.free_flights << "\n";
+    out << "  scattering events   " << c.scattering_events << "\n";
+    const RenderRates r = render_rates(c, result.seconds, result.threads);
+    out << "  threads             " << result.threads << "\n";
+    out << "  lookups/s/core      " << r.density_lookups_per_s_per_core << "\n";
+    out << "  camera rays/s       " << r.camera_rays_per_s << "\n";
+    out << "  all rays/s          " << r.all_rays_per_s
+        << " (camera + transmittance + free flights)\n";
     return out.str();
 }
 

@@ -102,6 +102,8 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
                 t_media = estimate_transmittance(
                     scene.media(), Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance},
                     volume.estimator, march_step_m(scene.media(), volume), rng, vc);
+                counters.density_lookups += vc.density_lookups;
+                counters.transmittance_rays += vc.transmittance_estimates;
                 if (is_black(t_media))
                     continue;
             }
@@ -127,9 +129,15 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
     const RenderPathEnvironment environment(scene, counters);
     const VolumeResult v =
         integrate_media(scene.media(), scene.desc().lights, scene.occlusion(), &environment,
-                        segment, scene.desc().render.volume, scene.plan().in_scattering, rng, vc);
+                        segment, scene.desc().render.volume, scene.plan().in_scattering, rng, vc,
+                        !(segment.t_max < kInfinity) && is_black(scene.desc().background) &&
+                            scene.sky() == nullptr);
     counters.volume_steps += vc.steps;
     counters.volume_shadow_rays += vc.shadow_rays;
+    counters.density_lookups += vc.density_lookups;
+    counters.transmittance_rays += vc.transmittance_estimates;
+    counters.free_flights += vc.free_flights;
+    counters.scattering_events += vc.scattering_events;
     return v;
 }
 

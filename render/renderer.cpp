@@ -25,7 +25,9 @@ PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sam
                                 RenderCounters& counters) {
     Pcg32 rng = pixel_rng(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
                           static_cast<uint32_t>(sample), frame, scene.desc().render.seed);
-    const Vec2 jitter = rng.next_vec2();
+    Vec2 jitter = rng.next_vec2();
+    if (!scene.desc().film.jitter)
+        jitter = Vec2(0.5f);
     const Ray ray = scene.camera().generate_ray(static_cast<float>(x) + jitter.x,
                                                 static_cast<float>(y) + jitter.y);
     return trace_camera_ray(scene, ray, rng, counters);
@@ -38,7 +40,7 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
     const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
     const int threads = options.threads > 0 ? options.threads : desc.render.threads;
 
-    RenderResult result{Film(width, height), {}, 0.0, false};
+    RenderResult result{Film(width, height), {}, 0.0, 1, false};
     std::mutex counters_mutex;
     std::atomic<bool> stopped{false};
     Progress progress("render", static_cast<uint64_t>(tiles_x) * tiles_y, options.progress);
@@ -84,6 +86,8 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
     };
 
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.initialize();
+    result.threads = arena.max_concurrency();
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
                           [&](const tbb::blocked_range<int>& r) {

@@ -21,6 +21,7 @@ struct FilmDesc {
     int width = 640;   ///< pixels, 1..16384
     int height = 360;  ///< pixels, 1..16384
     int spp = 16;      ///< samples per pixel, >= 1
+    bool jitter = true;  ///< false: every sample through the pixel centre (peer comparisons)
 };
 
 struct PreviewDesc {

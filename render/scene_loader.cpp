@@ -53,6 +53,8 @@ FilmDesc parse_film(const JsonNode& node) {
         film.height = parse_int_in(*v, 1, 16384);
     if (auto v = reader.optional("spp"))
         film.spp = parse_int_in(*v, 1, 1 << 20);
+    if (auto v = reader.optional("jitter"))
+        film.jitter = v->as_bool();
     reader.finish();
     return film;
 }
@@ -97,6 +99,8 @@ RenderSettings parse_render(const JsonNode& node) {
         }
         if (auto depth = volume.optional("max_depth"))
             render.volume.max_depth = parse_int_in(*depth, 1, 1 << 16);
+        if (auto cache = volume.optional("light_cache"))
+            render.volume.light_cache = cache->as_bool();
         if (auto sampling = volume.optional("light_sampling")) {
             const std::string name = sampling->as_string();
             if (name == "all") {

@@ -40,6 +40,9 @@ struct VolumeSettings {
     bool estimator_given = false;  ///< false: chosen from the media by the loader
     VolumeIntegrator integrator = VolumeIntegrator::Single;
     int max_depth = 256;  ///< scattering events per path (multiple scattering)
+    /// Directional lights' transmittance through a single grid medium from a precomputed cache
+    /// (volume/light_cache.h; biased, stated there) instead of the estimator.
+    bool light_cache = false;
 };
 
 struct VolumeResult {
@@ -53,6 +56,7 @@ struct VolumeCounters {
     uint64_t density_lookups = 0;  ///< point evaluations of the media coefficients
     uint64_t transmittance_estimates = 0;
     uint64_t scattering_events = 0;  ///< real scattering collisions (tracking integrators)
+    uint64_t free_flights = 0;       ///< free-flight distance samples (tracking integrators)
 };
 
 /// Single scattering by ray marching. Each march step [a, a + dt] inside a stretch of constant

@@ -20,6 +20,7 @@ glm::dvec3 march_walk(const MediumSet& media, const Ray& ray, float h, float u,
                       const std::vector<MajorantSegment>& segments, bool skip_constant,
                       VolumeCounters& counters, Visit&& visit) {
     glm::dvec3 tau(0.0);
+    const RayMediaQuery query(media, ray);
     for (const MajorantSegment& s : segments) {
         if (!(s.t1 < kInfinity)) {
             // An endless stretch: infinite depth in every channel whose extinction is bounded
@@ -36,7 +37,7 @@ glm::dvec3 march_walk(const MediumSet& media, const Ray& ray, float h, float u,
         // Ends are evaluated a hair inside so a homogeneous box's face does not round outside.
         const float inset = 1e-6f * (s.t1 - s.t0);
         float t_prev = s.t0;
-        Rgb sigma_prev = media.coefficients(ray.at(s.t0 + inset), s.media_mask).sigma_t;
+        Rgb sigma_prev = query.coefficients(s.t0 + inset, s.media_mask).sigma_t;
         ++counters.density_lookups;
         const double first = std::ceil(static_cast<double>(s.t0 - ray.t_min) / h - u);
         for (double i = std::max(first, 0.0);; i += 1.0) {
@@ -46,7 +47,7 @@ glm::dvec3 march_walk(const MediumSet& media, const Ray& ray, float h, float u,
             if (!(t > t_prev))
                 continue;
             const Vec3 x = ray.at(t);
-            const PointCoefficients k = media.coefficients(x, s.media_mask);
+            const PointCoefficients k = query.coefficients(t, s.media_mask);
             ++counters.density_lookups;
             tau += 0.5 * static_cast<double>(t - t_prev) * glm::dvec3(sigma_prev + k.sigma_t);
             t_prev = t;
@@ -54,7 +55,7 @@ glm::dvec3 march_walk(const MediumSet& media, const Ray& ray, float h, float u,
             if (!visit(t, x, k, s.media_mask, tau))
                 return tau;
         }
-        const Rgb sigma_end = media.coefficients(ray.at(s.t1 - inset), s.media_mask).sigma_t;
+        const Rgb sigma_end = query.coefficients(s.t1 - inset, s.media_mask).sigma_t;
         ++counters.density_lookups;
         tau += 0.5 * static_cast<double>(s.t1 - t_prev) * glm::dvec3(sigma_prev + sigma_end);
     }

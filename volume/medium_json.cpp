@@ -53,6 +53,40 @@ glm::dmat4 parse_transform(const JsonNode& node) {
     return m;
 }
 
+/// `temperature`: {"grid" (default "temperature"), "file" (default: the medium's file),
+/// "scale" K per unit (default 1), "offset" K (default 0), "emission_scale" (default 1)}.
+VdbTemperature parse_temperature(const JsonNode& node, const std::string& medium_file,
+                                 const std::string& base_dir, const glm::dmat4& user) {
+    JsonObjectReader reader(node);
+    VdbTemperature t;
+    t.file = medium_file;
+    std::string grid_name = "temperature";
+    if (auto v = reader.optional("grid"))
+        grid_name = v->as_string();
+    std::optional<JsonNode> file_node = reader.optional("file");
+    if (file_node) {
+        std::filesystem::path file = file_node->as_string();
+        if (file.is_relative() && !base_dir.empty())
+            file = std::filesystem::path(base_dir) / file;
+        t.file = file.string();
+    }
+    if (auto v = reader.optional("scale"))
+        t.scale = v->non_negative();
+    if (auto v = reader.optional("offset"))
+        t.offset = v->as_float();
+    if (auto v = reader.optional("emission_scale"))
+        t.emission_scale = v->non_negative();
+    reader.finish();
+    const JsonNode& where = file_node ? *file_node : node;
+    const LoadedGrid loaded =
+        load_density_grid(t.file, grid_name, where.file() + ": " + where.pointer());
+    t.grid = loaded.grid;
+    t.grid_name = loaded.grid_name;
+    t.world_to_index = Mat4(glm::inverse(user * loaded.index_to_world));
+    t.blackbody = std::make_shared<const BlackbodyTable>();
+    return t;
+}
+
 VdbMedium parse_vdb(JsonObjectReader& reader, const std::string& base_dir) {
     VdbMedium m;
     const JsonNode file_node = reader.required("file");
@@ -93,6 +127,8 @@ VdbMedium parse_vdb(JsonObjectReader& reader, const std::string& base_dir) {
     glm::dmat4 user(1.0);
     if (auto v = reader.optional("transform"))
         user = parse_transform(*v);
+    if (auto v = reader.optional("temperature"))
+        m.temperature = parse_temperature(*v, m.file, base_dir, user);
 
     const LoadedGrid loaded =
         load_density_grid(m.file, grid_name, file_node.file() + ": " + file_node.pointer());

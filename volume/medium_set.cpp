@@ -1,6 +1,8 @@
 #include "volume/medium_set.h"
 
 #include "core/error.h"
+#include "lights/light.h"
+#include "volume/light_cache.h"
 
 #include <algorithm>
 
@@ -71,7 +73,9 @@ void medium_segments(const Medium& medium, uint32_t bit, const Ray& ray,
 
 }  // namespace
 
-MediumSet::MediumSet(std::vector<Medium> media) : m_media(std::move(media)) {
+MediumSet::MediumSet(std::vector<Medium> media)
+    : m_media(std::move(media)),
+      m_light_caches(std::make_shared<std::array<LightCacheSlot, kMaxCachedLights>>()) {
     KASUMI_CHECK(m_media.size() <= kMaxMedia);
     m_all_homogeneous = std::all_of(m_media.begin(), m_media.end(),
                                     [](const Medium& m) { return homogeneous(m) != nullptr; });
@@ -80,7 +84,40 @@ MediumSet::MediumSet(std::vector<Medium> media) : m_media(std::move(media)) {
         const Rgb t = h ? h->sigma_t() : std::get<VdbMedium>(m.model).sigma_t_per_density();
         if (!(t.r == t.g && t.g == t.b))
             m_grey_extinction = false;
+        FastMedium f;
+        if (h != nullptr) {
+            f.sigma_t = h->sigma_t();
+            f.sigma_s = h->sigma_s;
+        } else if (const VdbMedium* v = std::get_if<VdbMedium>(&m.model)) {
+            f.grid = v->grid.get();
+            f.world_to_index = v->world_to_index;
+            f.sigma_t = v->sigma_t_per_density();
+            f.sigma_s = v->sigma_s_per_density;
+            if (v->temperature && max_component(v->sigma_a_per_density) > 0.0f)
+                m_emits = true;
+        } else {
+            f.other = true;
+        }
+        m_fast.push_back(f);
     }
+}
+
+MediumSet::LightCacheSlot::~LightCacheSlot() = default;
+
+const LightTransmittanceCache* MediumSet::light_cache(size_t light_index,
+                                                      const Light& light) const {
+    const auto* directional = std::get_if<DirectionalLight>(&light.emitter);
+    if (directional == nullptr || light_index >= kMaxCachedLights || m_media.size() != 1)
+        return nullptr;
+    const VdbMedium* grid = std::get_if<VdbMedium>(&m_media[0].model);
+    if (grid == nullptr || !m_light_caches)
+        return nullptr;
+    LightCacheSlot& slot = (*m_light_caches)[light_index];
+    std::call_once(slot.once, [&] {
+        slot.cache = std::make_unique<LightTransmittanceCache>(
+            *grid, -glm::normalize(directional->direction));
+    });
+    return slot.cache.get();
 }
 
 bool MediumSet::scatters() const {
@@ -235,6 +272,19 @@ PointCoefficients MediumSet::coefficients(const Vec3& p, uint32_t mask) const {
         }
     }
     return c;
+}
+
+Rgb MediumSet::emission(const Vec3& p, uint32_t mask) const {
+    Rgb result(0.0f);
+    for (; mask != 0; mask &= mask - 1) {
+        const VdbMedium* v = std::get_if<VdbMedium>(&m_media[__builtin_ctz(mask)].model);
+        if (v == nullptr || !v->temperature)
+            continue;
+        const float d = grid_density(*v, p);
+        if (d > 0.0f)
+            result += v->sigma_a_per_density * d * v->temperature->radiance(p);
+    }
+    return result;
 }
 
 Rgb MediumSet::scattering(const Vec3& p, uint32_t mask, float mu) const {

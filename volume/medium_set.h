@@ -5,9 +5,15 @@
 #include "phase/phase_sample.h"
 #include "volume/medium.h"
 
+#include <array>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace kasumi {
+
+class LightTransmittanceCache;
+struct Light;
 
 /// A stretch [t0, t1] of a ray over which every coefficient is constant (homogeneous media).
 struct MediumInterval {
@@ -55,6 +61,11 @@ class MediumSet {
     bool scatters() const;
     /// True if every medium is homogeneous (then `intervals` and `optical_depth` are exact).
     bool all_homogeneous() const { return m_all_homogeneous; }
+    /// True if some medium emits light (a grid with a temperature).
+    bool emits() const { return m_emits; }
+    /// Emitted radiance per metre at p, sum over the media in `mask` of sigma_a,m(p) L_e,m(p),
+    /// cd/m² per metre.
+    Rgb emission(const Vec3& p, uint32_t mask) const;
     /// True if every medium's extinction is the same in all channels (trackers run once).
     bool grey_extinction() const { return m_grey_extinction; }
     /// Shortest voxel edge of the grid media, metres (kInfinity without grids).
@@ -88,10 +99,89 @@ class MediumSet {
     MixtureSample sample_scattering(const Vec3& p, uint32_t mask, const Vec3& wo, float u_pick,
                                     Vec2 u) const;
 
+    /// The hot-loop view of medium k: a grid (null for a homogeneous medium), its world-to-index
+    /// transform and the coefficients per unit density (or the constant ones).
+    struct FastMedium {
+        const DensityGrid* grid = nullptr;
+        Mat4 world_to_index{1.0f};
+        Rgb sigma_t{0.0f};   ///< 1/m (per unit density for a grid)
+        Rgb sigma_s{0.0f};   ///< 1/m (per unit density for a grid)
+        bool other = false;  ///< another kind of medium: queried through coefficients()
+    };
+    const FastMedium& fast(uint32_t k) const { return m_fast[k]; }
+
+    /// Lights whose transmittance can be cached (render.volume.light_cache).
+    static constexpr size_t kMaxCachedLights = 8;
+    /// The cached transmittance toward directional light number `light_index` (built on first
+    /// use, thread-safe; volume/light_cache.h states its bias), or null when the set is not
+    /// exactly one grid medium, the light is not directional or light_index is too large.
+    const LightTransmittanceCache* light_cache(size_t light_index, const Light& light) const;
+
   private:
     std::vector<Medium> m_media;
+    std::vector<FastMedium> m_fast;
+    struct LightCacheSlot {
+        std::once_flag once;
+        std::unique_ptr<LightTransmittanceCache> cache;
+        ~LightCacheSlot();
+    };
+    /// Shared by copies of the set (they hold the same media).
+    std::shared_ptr<std::array<LightCacheSlot, kMaxCachedLights>> m_light_caches;
     bool m_all_homogeneous = true;
     bool m_grey_extinction = true;
+    bool m_emits = false;
+};
+
+/// Point queries of a MediumSet along one ray by distance t: each grid's index-space ray is
+/// computed once here, so a lookup costs three multiply-adds and the trilinear read (instead of
+/// a 4x4 transform per point). Same values as MediumSet::coefficients(ray.at(t), mask) up to
+/// rounding. Lives on the stack of one estimator call.
+class RayMediaQuery {
+  public:
+    RayMediaQuery(const MediumSet& media, const Ray& ray) : m_media(media), m_ray(ray) {
+        const size_t n = media.media().size();
+        for (uint32_t k = 0; k < n; ++k) {
+            const MediumSet::FastMedium& m = media.fast(k);
+            if (m.grid == nullptr)
+                continue;
+            m_origin[k] = Vec3(m.world_to_index * Vec4(ray.origin, 1.0f));
+            m_direction[k] = Vec3(m.world_to_index * Vec4(ray.direction, 0.0f));
+        }
+    }
+
+    /// Density of grid medium k at distance t (0 for a homogeneous medium).
+    float density(uint32_t k, float t) const {
+        const MediumSet::FastMedium& m = m_media.fast(k);
+        return m.grid->density(m_origin[k] + t * m_direction[k]);
+    }
+
+    /// sigma_t and sigma_s at distance t, summing the media in `mask` (a segment's media_mask).
+    PointCoefficients coefficients(float t, uint32_t mask) const {
+        PointCoefficients c;
+        for (; mask != 0; mask &= mask - 1) {
+            const uint32_t k = static_cast<uint32_t>(__builtin_ctz(mask));
+            const MediumSet::FastMedium& m = m_media.fast(k);
+            if (m.other) {
+                const PointCoefficients o = m_media.coefficients(m_ray.at(t), 1u << k);
+                c.sigma_t += o.sigma_t;
+                c.sigma_s += o.sigma_s;
+            } else if (m.grid == nullptr) {
+                c.sigma_t += m.sigma_t;
+                c.sigma_s += m.sigma_s;
+            } else {
+                const float d = m.grid->density(m_origin[k] + t * m_direction[k]);
+                c.sigma_t += m.sigma_t * d;
+                c.sigma_s += m.sigma_s * d;
+            }
+        }
+        return c;
+    }
+
+  private:
+    const MediumSet& m_media;
+    Ray m_ray;
+    Vec3 m_origin[kMaxMedia];
+    Vec3 m_direction[kMaxMedia];
 };
 
 }  // namespace kasumi

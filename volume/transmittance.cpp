@@ -47,15 +47,14 @@ Rgb march(const MediumSet& media, const Ray& ray, float step_m,
 }
 
 /// Delta tracking of one channel: 1 if the walk crosses without a real collision, else 0.
-float delta_channel(const MediumSet& media, const Ray& ray, int c,
-                    const std::vector<MajorantSegment>& segments, Pcg32& rng,
-                    VolumeCounters& counters) {
+float delta_channel(const RayMediaQuery& media, int c, const std::vector<MajorantSegment>& segments,
+                    Pcg32& rng, VolumeCounters& counters) {
     for (const MajorantSegment& s : segments) {
         const float mu = s.sigma_max[c];
         if (!(mu > 0.0f))
             continue;
         const bool crossed = walk_collisions(s, mu, rng, [&](float t) {
-            const float sigma = media.coefficients(ray.at(t), s.media_mask).sigma_t[c];
+            const float sigma = media.coefficients(t, s.media_mask).sigma_t[c];
             ++counters.density_lookups;
             return !(rng.next_float() * mu < sigma);  // a real collision ends the walk
         });
@@ -67,11 +66,12 @@ float delta_channel(const MediumSet& media, const Ray& ray, int c,
 
 Rgb delta(const MediumSet& media, const Ray& ray, const std::vector<MajorantSegment>& segments,
           Pcg32& rng, VolumeCounters& counters) {
-    const float r = delta_channel(media, ray, 0, segments, rng, counters);
+    const RayMediaQuery query(media, ray);
+    const float r = delta_channel(query, 0, segments, rng, counters);
     if (media.grey_extinction())
         return Rgb(r);
-    return Rgb(r, delta_channel(media, ray, 1, segments, rng, counters),
-               delta_channel(media, ray, 2, segments, rng, counters));
+    return Rgb(r, delta_channel(query, 1, segments, rng, counters),
+               delta_channel(query, 2, segments, rng, counters));
 }
 
 /// Ratio tracking (Novák et al. 2014, "Residual Ratio Tracking for Estimating Attenuation in
@@ -80,6 +80,7 @@ Rgb delta(const MediumSet& media, const Ray& ray, const std::vector<MajorantSegm
 /// control = minorant the residual form (the control's exp(-integral) is exact).
 Rgb ratio(const MediumSet& media, const Ray& ray, const std::vector<MajorantSegment>& segments,
           bool residual, Pcg32& rng, VolumeCounters& counters) {
+    const RayMediaQuery query(media, ray);
     Rgb weight(1.0f);
     glm::dvec3 control_depth(0.0);
     for (const MajorantSegment& s : segments) {
@@ -97,7 +98,7 @@ Rgb ratio(const MediumSet& media, const Ray& ray, const std::vector<MajorantSegm
         if (!(mu > 0.0f))
             continue;
         const bool alive = walk_collisions(s, mu, rng, [&](float t) {
-            const Rgb sigma = media.coefficients(ray.at(t), s.media_mask).sigma_t;
+            const Rgb sigma = query.coefficients(t, s.media_mask).sigma_t;
             ++counters.density_lookups;
             // sigma - control <= mu up to rounding; the clamp only guards rounding.
             weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
@@ -171,17 +172,22 @@ Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator est
 
 FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb& throughput,
                               Pcg32& rng, VolumeCounters& counters) {
+    ++counters.free_flights;
     thread_local std::vector<MajorantSegment> segments;
     media.majorants(ray, segments);
+    const RayMediaQuery query(media, ray);
+    const bool emits = media.emits();
     FreeFlight flight;
     for (const MajorantSegment& s : segments) {
         const float mu = max_component(s.sigma_max);
         if (!(mu > 0.0f))
             continue;
         const bool passed = walk_collisions(s, mu, rng, [&](float t) {
-            const Vec3 x = ray.at(t);
-            const PointCoefficients k = media.coefficients(x, s.media_mask);
+            const PointCoefficients k = query.coefficients(t, s.media_mask);
             ++counters.density_lookups;
+            if (emits)
+                flight.emitted +=
+                    throughput * flight.weight * media.emission(ray.at(t), s.media_mask) / mu;
             const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
             const Rgb w = throughput * flight.weight;
             const float p_s = mean(w * k.sigma_s), p_n = mean(w * sigma_n);
@@ -194,7 +200,7 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
             if (rng.next_float() * (p_s + p_n) < p_s) {
                 flight.scattered = true;
                 flight.t = t;
-                flight.position = x;
+                flight.position = ray.at(t);
                 flight.media_mask = s.media_mask;
                 flight.weight *= (p_s + p_n) / (mu * p_s);
                 return false;

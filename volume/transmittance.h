@@ -35,6 +35,12 @@ struct FreeFlight {
     /// weight * F(t) estimates the integral of T(t) F(t) dt for any F that vanishes where
     /// sigma_s does (F carries sigma_s, e.g. sigma_s p L); over escapes, weight estimates T.
     Rgb weight{1.0f};
+    /// Light emitted by the media along the flight toward the ray origin (cd/m²), already
+    /// multiplied by the `throughput` passed in: at each tentative collision t_i,
+    /// sum throughput W_i sigma_a L_e(t_i) / mu, with W_i the weight before the choice there;
+    /// its expectation is the integral of T(t) sigma_a L_e dt (the null-collision form of the
+    /// emission term; 0 when no medium emits).
+    Rgb emitted{0.0f};
 };
 
 /// Spectral tracking (Kutz et al. 2017, "Spectral and Decomposition Tracking for Rendering

@@ -1,5 +1,6 @@
 #include "volume/volume_path.h"
 
+#include "volume/light_cache.h"
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"
 
@@ -38,6 +39,8 @@ VolumeResult march_single(const MediumSet& media, const std::vector<Light>& ligh
                        const Rgb t_camera(glm::exp(-depth));
                        if (max_component(t_camera) < kTailTransmittance)
                            return false;
+                       if (media.emits())
+                           result.radiance += (h * t_camera) * media.emission(x, mask);
                        if (!is_black(k.sigma_s)) {
                            ++counters.steps;
                            result.radiance +=
@@ -53,12 +56,15 @@ VolumeResult march_single(const MediumSet& media, const std::vector<Light>& ligh
 Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
                   const OcclusionQuery* occlusion, const PathEnvironment* environment,
                   const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
-                  VolumeCounters& counters) {
+                  VolumeCounters& counters, Rgb* first_escape) {
     Rgb radiance(0.0f), throughput(1.0f);
     Ray ray = camera_segment;
     for (int depth = 0;;) {
         const FreeFlight flight = sample_free_flight(media, ray, throughput, rng, counters);
+        radiance += flight.emitted;
         throughput *= flight.weight;
+        if (depth == 0 && first_escape != nullptr)
+            *first_escape = flight.scattered ? Rgb(0.0f) : flight.weight;
         if (!flight.scattered) {
             // The camera segment's own escape is composited by the caller (T * L_surface).
             if (depth > 0 && environment != nullptr && !is_black(throughput))
@@ -98,7 +104,8 @@ Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
                      VolumeCounters& counters) {
     const float step = march_step_m(media, settings);
     Rgb total(0.0f);
-    for (const Light& light : lights) {
+    for (size_t light_index = 0; light_index < lights.size(); ++light_index) {
+        const Light& light = lights[light_index];
         // One sample per light: exact for delta lights, unbiased for extended ones (irradiance
         // at normal incidence over the pdf; no cosine inside a medium).
         const IncidentLight in = sample_incident(light, x, rng);
@@ -107,8 +114,16 @@ Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
         const Rgb f = media.scattering(x, media_mask, scattering_cosine(wo, in.wi));
         ++counters.density_lookups;
         if (is_black(f) ||
-            (light.shadows == ShadowMode::Ray && blocked(occlusion, x, in, counters)))
+            (light.shadows != ShadowMode::None && blocked(occlusion, x, in, counters)))
             continue;
+        if (settings.light_cache) {
+            if (const LightTransmittanceCache* cache = media.light_cache(light_index, light)) {
+                if (const auto t = cache->transmittance(x)) {
+                    total += f * in.irradiance * *t;
+                    continue;
+                }
+            }
+        }
         const Ray shadow{x, in.wi, 0.0f, in.distance >= kInfinity ? kInfinity : in.distance};
         total += f * in.irradiance *
                  estimate_transmittance(media, shadow, settings.estimator, step, rng, counters);
@@ -119,7 +134,9 @@ Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
 VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& lights,
                              const OcclusionQuery* occlusion, const PathEnvironment* environment,
                              const Ray& ray, const VolumeSettings& settings, bool in_scatter,
-                             Pcg32& rng, VolumeCounters& counters) {
+                             Pcg32& rng, VolumeCounters& counters, bool nothing_behind) {
+    // Emitting media add light along the ray even when nothing scatters.
+    in_scatter = in_scatter || media.emits();
     const bool marched_single =
         settings.estimator == Estimator::March && settings.integrator == VolumeIntegrator::Single;
     if (in_scatter && marched_single) {
@@ -128,11 +145,18 @@ VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& l
         return march_single(media, lights, occlusion, ray, settings, rng, counters);
     }
     VolumeResult result;
+    if (in_scatter && nothing_behind) {
+        // T only feeds the transmittance AOV here: the first free flight's escape weight is an
+        // unbiased estimate of it, so no separate walk through the media is needed.
+        result.radiance = path_radiance(media, lights, occlusion, environment, ray, settings, rng,
+                                        counters, &result.transmittance);
+        return result;
+    }
     result.transmittance = estimate_transmittance(media, ray, settings.estimator,
                                                   march_step_m(media, settings), rng, counters);
     if (in_scatter) {
-        result.radiance =
-            path_radiance(media, lights, occlusion, environment, ray, settings, rng, counters);
+        result.radiance = path_radiance(media, lights, occlusion, environment, ray, settings, rng,
+                                        counters, nullptr);
     }
     return result;
 }

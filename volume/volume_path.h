@@ -39,10 +39,12 @@ Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
 /// - otherwise: transmittance by the estimator and scattered light by spectral tracking, with
 ///   shadow rays through the estimator; `multiple` continues paths by phase sampling up to
 ///   max_depth, adding what they meet in `environment` (null: nothing) when they leave.
-/// Never throws.
+/// `nothing_behind`: no light arrives from beyond the segment (no surface, black background),
+/// so the transmittance is only an AOV; the trackers then take it from the first free flight's
+/// escape weight (unbiased, noisier) instead of a separate walk. Never throws.
 VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& lights,
                              const OcclusionQuery* occlusion, const PathEnvironment* environment,
                              const Ray& ray, const VolumeSettings& settings, bool in_scatter,
-                             Pcg32& rng, VolumeCounters& counters);
+                             Pcg32& rng, VolumeCounters& counters, bool nothing_behind = false);
 
 }  // namespace kasumi

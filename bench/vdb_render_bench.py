@@ -1,0 +1,249 @@
+#!/usr/bin/python3
+"""Peer benchmark: kasumi against OpenVDB's vdb_render on the same cloud, camera, light and
+medium, compared at equal error against a converged kasumi reference.
+
+    bench/vdb_render_bench.py [--build build/release] [--res 256,512] [--image 512] [--runs 5]
+
+What vdb_render computes (openvdb/tools/RayTracer.h, VolumeRender::operator(), OpenVDB 10):
+a fixed-step march along each camera ray through the pixel centre (step `-step` voxels, nodes at
+multiples of the step from the eye, index space), at each node with density d >= cutoff
+
+    dT    = exp(-(absorb + scatter) d step)
+    L    += lightColor * scatter / (scatter + absorb) * T_shadow * T_camera * (1 - dT)
+    T_camera *= dT
+
+with T_shadow a march toward the light (step `-shadowstep` voxels, rectangle rule, densities below
+`cutoff` skipped, stopped when |T_shadow|^2 < cutoff) and each shadow step's optical depth
+divided by (1 + t gain): `-gain` fakes multiple scattering, so we set it to 0. The camera march
+stops when |T_camera|^2 < cutoff. Coefficients are per voxel length. At convergence (step -> 0,
+cutoff -> 0) this is single scattering with a phase function equal to 1 per steradian:
+
+    L = lightColor * integral sigma_s(x) T_camera(x) T_light(x) dt.
+
+kasumi's single scattering with an isotropic phase (1/(4 pi) per sr) under a directional light
+of illuminance E gives E/(4 pi) * the same integral; with E = 4 pi lux (white) the two agree
+exactly, so no rescaling is needed. kasumi's coefficients are per metre: sigma = vdb coefficient
+/ voxel size. Camera: same eye, look-at, up; vdb_render's -fov is horizontal, kasumi's fov_deg
+vertical: equal for the square images used here. kasumi samples the pixel centre too
+(film.jitter = false), so both estimate the same pixel value.
+
+Equal error: the reference is kasumi at many samples per pixel (two independent halves, so its
+own noise is measured and removed from every RMSE; bench/vdb_image_compare.cpp). vdb_render is
+deterministic: its error is its bias (steps and cutoffs). kasumi's estimators are unbiased: its
+error is noise, falling as 1/sqrt(spp). We find the smallest power-of-two spp whose corrected RMSE
+is at or below vdb_render's, then time both (same thread count) in alternating runs and report
+medians. Also printed: the time kasumi would need at exactly vdb_render's error (RMSE^2 ~ 1/spp),
+kasumi's density lookups per second per core and rays per second.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# Scene (metres). make-cloud's cube spans x, z in [-500, 500], y in [0, 1000].
+EYE = (0.0, 480.0, 1500.0)
+TARGET = (8.0, 418.0, 0.0)
+UP = (0.0, 1.0, 0.0)
+FOV_DEG = 30.0
+LIGHT_TOWARD = (0.55, 0.65, -0.2)  # direction toward the light (vdb_render's -light)
+SIGMA_S_PER_M = 0.1  # per unit density
+SIGMA_A_PER_M = 0.002
+
+
+def run(cmd, **kw):
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
+    wall = time.perf_counter() - t0
+    if p.returncode != 0:
+        sys.exit("failed (%d): %s\n%s%s" % (p.returncode, " ".join(cmd), p.stdout, p.stderr))
+    return p, wall
+
+
+# kasumi configurations timed against vdb_render (name, render.volume settings, unbiased?).
+CONFIGS = [
+    ("residual-ratio", {"integrator": "single", "estimator": "residual-ratio"}, True),
+    ("residual-ratio + light cache",
+     {"integrator": "single", "estimator": "residual-ratio", "light_cache": True}, False),
+    ("march 1 voxel + light cache",
+     {"integrator": "single", "estimator": "march", "step_voxels": 1.0, "light_cache": True},
+     False),
+]
+
+
+def kasumi_scene(vdb_path, voxel_m, res_px, spp, seed, volume):
+    return {
+        "camera": {"position": list(EYE), "look_at": list(TARGET), "up": list(UP),
+                   "fov_deg": FOV_DEG},
+        "film": {"width": res_px, "height": res_px, "spp": spp, "jitter": False},
+        "background": [0, 0, 0],
+        "lights": [{"name": "sun", "type": "directional",
+                    "direction": [-c for c in LIGHT_TOWARD],
+                    "illuminance_lux": 4.0 * math.pi, "color": [1, 1, 1]}],
+        "media": [{"name": "cloud", "type": "vdb", "file": os.path.abspath(vdb_path),
+                   "grid": "density", "sigma_a": [SIGMA_A_PER_M] * 3,
+                   "sigma_s": [SIGMA_S_PER_M] * 3, "phase": {"model": "isotropic"}}],
+        "render": {"seed": seed, "volume": volume},
+    }
+
+
+def render_kasumi(args, scene_path, out, spp, seed, threads):
+    cmd = [args.kasumi, "render", scene_path, "-o", out, "--no-preview", "--spp", str(spp),
+           "--seed", str(seed), "--threads", str(threads), "-v"]
+    p, wall = run(cmd)
+    stats = {}
+    for line in p.stderr.splitlines():
+        m = re.match(r"\s+(time|density lookups|lookups/s/core|camera rays/s|all rays/s|"
+                     r"transmittance rays|free flights|threads)\s+([0-9.eE+-]+)", line)
+        if m:
+            stats[m.group(1)] = float(m.group(2))
+    return stats.get("time", wall), wall, stats
+
+
+def render_vdb(args, vdb_path, voxel_m, out, res_px, step, shadowstep, cutoff, threads):
+    cmd = ["vdb_render", vdb_path, out, "-res", "%dx%d" % (res_px, res_px),
+           "-translate", "%g,%g,%g" % EYE, "-lookat", "%g,%g,%g" % TARGET,
+           "-up", "%g,%g,%g" % UP, "-fov", "%g" % FOV_DEG,
+           "-light", "%g,%g,%g,1,1,1" % LIGHT_TOWARD,
+           "-scatter", ",".join(["%g" % (SIGMA_S_PER_M * voxel_m)] * 3),
+           "-absorb", ",".join(["%g" % (SIGMA_A_PER_M * voxel_m)] * 3),
+           "-gain", "0", "-step", "%g" % step, "-shadowstep", "%g" % shadowstep,
+           "-cutoff", "%g" % cutoff, "-cpus", str(threads), "-v"]
+    p, wall = run(cmd)
+    m = re.search(r"ray-tracing.*\n.*completed in ([0-9.eE+-]+) sec", p.stdout)
+    return (float(m.group(1)) if m else wall), wall
+
+
+def compare(args, ref_a, ref_b, image):
+    p, _ = run([args.compare, ref_a, ref_b, image])
+    return json.loads(p.stdout)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", default=os.path.join(ROOT, "build", "release"))
+    ap.add_argument("--res", default="256,512", help="cloud resolutions (voxels per edge)")
+    ap.add_argument("--image", type=int, default=512, help="image edge in pixels")
+    ap.add_argument("--runs", type=int, default=5, help="timed runs per renderer (alternating)")
+    ap.add_argument("--threads", type=int, default=1, help="threads for the timed runs")
+    ap.add_argument("--ref-spp", type=int, default=512, help="reference spp (two halves)")
+    ap.add_argument("--max-spp", type=int, default=256, help="end of each spp ladder")
+    ap.add_argument("--vdb-step", default="1,3,0.005",
+                    help="vdb_render step,shadowstep,cutoff (its defaults: 1,3,0.005)")
+    ap.add_argument("--out", default=os.path.join(ROOT, "build", "vdb_bench"))
+    args = ap.parse_args()
+    args.kasumi = os.path.join(args.build, "apps", "kasumi")
+    args.compare = os.path.join(args.build, "bench", "vdb_image_compare")
+    os.makedirs(args.out, exist_ok=True)
+    step, shadowstep, cutoff = (float(x) for x in args.vdb_step.split(","))
+    load = os.getloadavg()
+    print("load average at start: %.2f %.2f %.2f; %d cores" % (load + (os.cpu_count(),)))
+    results = []
+    for res in (int(r) for r in args.res.split(",")):
+        voxel_m = 1000.0 / res
+        vdb = os.path.join(args.out, "cumulus_%d.vdb" % res)
+        if not os.path.exists(vdb):
+            run([args.kasumi, "make-cloud", "--res", str(res), "--seed", "7", "-o", vdb])
+
+        def scene_file(tag, volume):
+            path = os.path.join(args.out, "scene_%d_%s.json" % (res, tag))
+            with open(path, "w") as f:
+                json.dump(kasumi_scene(vdb, voxel_m, args.image, 1, 1, volume), f, indent=1)
+            return path
+
+        configs = [(name, scene_file("c%d" % i, volume), unbiased)
+                   for i, (name, volume, unbiased) in enumerate(CONFIGS)]
+        # Reference: the unbiased configuration, two independent halves, all threads.
+        half = max(args.ref_spp // 2, 1)
+        refs = []
+        for k, seed in enumerate((1001, 2002)):
+            path = os.path.join(args.out, "ref_%d_%c.exr" % (res, "ab"[k]))
+            if not os.path.exists(path):
+                t, _, _ = render_kasumi(args, configs[0][1], path, half, seed, 0)
+                print("res %d: reference half %d (%d spp) in %.1f s" % (res, k, half, t))
+            refs.append(path)
+
+        vdb_out = os.path.join(args.out, "vdb_%d.exr" % res)
+        t_vdb, _ = render_vdb(args, vdb, voxel_m, vdb_out, args.image, step, shadowstep, cutoff,
+                              args.threads)
+        e_vdb = compare(args, refs[0], refs[1], vdb_out)
+        print("res %d: vdb_render %.2f s, RMSE %.4g (corrected %.4g, ref noise %.3g, mean %.4g)"
+              % (res, t_vdb, e_vdb["rmse"], e_vdb["rmse_corrected"], e_vdb["ref_noise_rmse"],
+                 e_vdb["ref_mean"]))
+
+        # Each configuration's spp ladder at the timed thread count: the smallest power of two
+        # at or below vdb_render's error.
+        chosen = []
+        for ci, (name, scene, unbiased) in enumerate(configs):
+            spp = 1
+            while True:
+                out = os.path.join(args.out, "kasumi_%d_c%d_%d.exr" % (res, ci, spp))
+                t, _, stats = render_kasumi(args, scene, out, spp, 7, args.threads)
+                e = compare(args, refs[0], refs[1], out)
+                print("res %d: kasumi [%s] %4d spp %.3f s, RMSE corrected %.4g"
+                      % (res, name, spp, t, e["rmse_corrected"]))
+                if e["rmse_corrected"] <= e_vdb["rmse_corrected"] or spp >= args.max_spp:
+                    break
+                spp *= 2
+            chosen.append((spp, e["rmse_corrected"], e["rmse_corrected"] <= e_vdb["rmse_corrected"]))
+
+        # Alternating timed runs: vdb_render, then every configuration, repeated.
+        times_vdb, walls_vdb = [], []
+        times_k = [[] for _ in configs]
+        stats_k = [[] for _ in configs]
+        for _ in range(args.runs):
+            t, w = render_vdb(args, vdb, voxel_m, vdb_out, args.image, step, shadowstep,
+                              cutoff, args.threads)
+            times_vdb.append(t)
+            walls_vdb.append(w)
+            for ci, (name, scene, _) in enumerate(configs):
+                spp = chosen[ci][0]
+                out = os.path.join(args.out, "kasumi_%d_c%d_%d.exr" % (res, ci, spp))
+                t, _, s_ = render_kasumi(args, scene, out, spp, 7, args.threads)
+                times_k[ci].append(t)
+                stats_k[ci].append(s_)
+        med_vdb = statistics.median(times_vdb)
+        r = {"res": res, "image": args.image, "threads": args.threads,
+             "vdb_render": {"step": step, "shadowstep": shadowstep, "cutoff": cutoff,
+                            "median_s": med_vdb, "runs_s": times_vdb,
+                            "median_wall_s": statistics.median(walls_vdb),
+                            "rmse": e_vdb["rmse_corrected"]},
+             "ref_mean": e_vdb["ref_mean"], "ref_noise_rmse": e_vdb["ref_noise_rmse"],
+             "kasumi": []}
+        for ci, (name, _, unbiased) in enumerate(configs):
+            spp, rmse, reached = chosen[ci]
+            med = statistics.median(times_k[ci])
+            s_ = stats_k[ci][len(stats_k[ci]) // 2]
+            entry = {"config": name, "spp": spp, "rmse": rmse, "reached_vdb_error": reached,
+                     "median_s": med, "runs_s": times_k[ci],
+                     "speedup_at_equal_or_lower_error": med_vdb / med if reached else None,
+                     "density_lookups": s_.get("density lookups"),
+                     "lookups_per_s_per_core": s_.get("lookups/s/core"),
+                     "camera_rays_per_s": s_.get("camera rays/s"),
+                     "all_rays_per_s": s_.get("all rays/s")}
+            if unbiased and rmse > 0:
+                # RMSE^2 ~ 1/spp for an unbiased estimator: time at exactly vdb_render's error.
+                entry["seconds_at_vdb_rmse"] = med * (rmse / e_vdb["rmse_corrected"]) ** 2
+                entry["speedup_at_equal_error"] = med_vdb / entry["seconds_at_vdb_rmse"]
+            r["kasumi"].append(entry)
+            print("res %d: median vdb_render %.3f s (RMSE %.4g) vs kasumi [%s] %.3f s at %d spp "
+                  "(RMSE %.4g%s): %s; %.3g lookups/s/core, %.3g camera rays/s, %.3g rays/s" %
+                  (res, med_vdb, e_vdb["rmse_corrected"], name, med, spp, rmse,
+                   "" if reached else ", vdb_render's error NOT reached",
+                   ("%.1fx" % (med_vdb / med)) if reached else "n/a",
+                   s_.get("lookups/s/core", 0), s_.get("camera rays/s", 0),
+                   s_.get("all rays/s", 0)))
+        results.append(r)
+    load = os.getloadavg()
+    print("load average at end: %.2f %.2f %.2f" % load)
+    print(json.dumps(results, indent=1))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,92 @@
+#include "volume/light_cache.h"
+
+#include <cmath>
+
+namespace kasumi {
+
+LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const Vec3& toward_light)
+    : m_world_to_index(medium.world_to_index), m_sigma_t_per_density(medium.sigma_t_per_density()) {
+    const DensityGrid& grid = *medium.grid;
+    if (grid.empty())
+        return;
+    m_lower = grid.lower();
+    m_dims = IVec3(grid.upper() - grid.lower()) + IVec3(1);
+    m_d.assign(static_cast<size_t>(m_dims.x) * m_dims.y * m_dims.z, 0.0f);
+
+    // One lattice step toward the light along the major axis a of the index-space direction.
+    const Vec3 d_index(m_world_to_index * Vec4(toward_light, 0.0f));
+    int a = 0;
+    for (int c = 1; c < 3; ++c)
+        if (std::abs(d_index[c]) > std::abs(d_index[a]))
+            a = c;
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    const Vec3 step = d_index / std::abs(d_index[a]);    // index units, |step[a]| = 1
+    const float length_m = 1.0f / std::abs(d_index[a]);  // metres per step
+    const int toward = step[a] > 0.0f ? 1 : -1;          // slice index change toward light
+    const int first = toward > 0 ? m_dims[a] - 1 : 0;    // slice nearest the light
+
+    auto at = [&](IVec3 p) -> float& { return m_d[index(p.x, p.y, p.z)]; };
+    // D on slice `slice` at fractional (u, v) along axes b, c; 0 outside the lattice (the ray
+    // has left the box, which it never re-enters).
+    auto bilinear = [&](int slice, float u, float v) {
+        const float fu = std::floor(u), fv = std::floor(v);
+        const int iu = static_cast<int>(fu), iv = static_cast<int>(fv);
+        const float tu = u - fu, tv = v - fv;
+        float sum = 0.0f;
+        for (int dv = 0; dv < 2; ++dv)
+            for (int du = 0; du < 2; ++du) {
+                const int pu = iu + du, pv = iv + dv;
+                if (pu < 0 || pv < 0 || pu >= m_dims[b] || pv >= m_dims[c])
+                    continue;
+                IVec3 p;
+                p[a] = slice;
+                p[b] = pu;
+                p[c] = pv;
+                sum += (du ? tu : 1.0f - tu) * (dv ? tv : 1.0f - tv) * at(p);
+            }
+        return sum;
+    };
+    for (int slice = first; slice >= 0 && slice < m_dims[a]; slice -= toward) {
+        const int upstream = slice + toward;
+        const bool inside = upstream >= 0 && upstream < m_dims[a];
+        IVec3 p;
+        p[a] = slice;
+        for (p[c] = 0; p[c] < m_dims[c]; ++p[c]) {
+            for (p[b] = 0; p[b] < m_dims[b]; ++p[b]) {
+                const Vec3 x = m_lower + Vec3(p);
+                const Vec3 q = x + step;
+                const float rho_p = grid.density(x);
+                const float rho_m = grid.density(x + 0.5f * step);
+                const float rho_q = grid.density(q);
+                const float upstream_d =
+                    inside ? bilinear(upstream, static_cast<float>(p[b]) + step[b],
+                                      static_cast<float>(p[c]) + step[c])
+                           : 0.0f;
+                at(p) = upstream_d + length_m * (rho_p + 4.0f * rho_m + rho_q) * (1.0f / 6.0f);
+            }
+        }
+    }
+}
+
+std::optional<Rgb> LightTransmittanceCache::transmittance(const Vec3& p_world) const {
+    if (m_d.empty())
+        return Rgb(1.0f);
+    const Vec3 u = Vec3(m_world_to_index * Vec4(p_world, 1.0f)) - m_lower;
+    const Vec3 f = glm::floor(u);
+    if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < m_dims.x - 1 && f.y < m_dims.y - 1 &&
+          f.z < m_dims.z - 1))
+        return std::nullopt;
+    const IVec3 i(f);
+    const Vec3 t = u - f;
+    const size_t dy = static_cast<size_t>(m_dims.x), dz = dy * static_cast<size_t>(m_dims.y);
+    const float* v = &m_d[index(i.x, i.y, i.z)];
+    const float x00 = v[0] + t.x * (v[1] - v[0]);
+    const float x10 = v[dy] + t.x * (v[dy + 1] - v[dy]);
+    const float x01 = v[dz] + t.x * (v[dz + 1] - v[dz]);
+    const float x11 = v[dz + dy] + t.x * (v[dz + dy + 1] - v[dz + dy]);
+    const float y0 = x00 + t.y * (x10 - x00), y1 = x01 + t.y * (x11 - x01);
+    const float d = y0 + t.z * (y1 - y0);
+    return exp_neg(m_sigma_t_per_density * d);
+}
+
+}  // namespace kasumi
