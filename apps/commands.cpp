@@ -4,6 +4,7 @@
 #include "apps/output_writer.h"
 #include "apps/scene_options.h"
 #include "core/error.h"
+#include "render/animation.h"
 #include "render/probe.h"
 #include "render/renderer.h"
 #include "volume/transmittance.h"
@@ -71,6 +72,7 @@ void add_render_command(CLI::App& root) {
         int64_t seed = -1;
         int threads = 0;
         std::string res;
+        int64_t frame = 0;
     };
     auto options = std::make_shared<Options>();
     CLI::App* cmd = root.add_subcommand("render", "render a scene to EXR and a PNG preview");
@@ -86,6 +88,9 @@ void add_render_command(CLI::App& root) {
     cmd->add_option("--threads", options->threads, "worker threads (0: all)")
         ->check(CLI::Range(0, 1024));
     cmd->add_option("--res", options->res, "resolution WxH (overrides film.width/height)");
+    cmd->add_option("--frame", options->frame,
+                    "frame of an animated scene: keyframed values and random numbers (default 0)")
+        ->check(CLI::Range(int64_t{0}, int64_t{4294967295}));
     cmd->callback([options] {
         SceneOptions scene_options = options->scene;
         if (options->spp > 0)
@@ -114,7 +119,8 @@ void add_render_command(CLI::App& root) {
                         doc[key] = Json::object();
                 }
             }
-            apply_overrides(doc, overrides, scene_options.scene_path);
+            doc = animated_document(std::move(doc), overrides, options->frame,
+                                    scene_options.scene_path);
             return parse_scene(doc, scene_options.scene_path);
         }();
 
@@ -135,6 +141,7 @@ void add_render_command(CLI::App& root) {
         std::signal(SIGTERM, on_signal);
         RenderOptions render_options;
         render_options.threads = options->threads;
+        render_options.frame = static_cast<uint32_t>(options->frame);
         render_options.progress = !scene_options.quiet;
         render_options.cancel = &g_cancel;
         const RenderResult result = render_image(runtime, render_options);

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "lights/light_json.h"
+#include "render/animation.h"
 #include "render/quality.h"
 #include "volume/medium_json.h"
 #include "volume/medium_set.h"
@@ -203,7 +204,7 @@ void apply_overrides(Json& root, const std::vector<Override>& overrides, const s
     }
 }
 
-SceneDesc parse_scene(const Json& root_value, const std::string& file) {
+SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCache* cache) {
     Json with_quality = root_value;
     QualityChoice quality = apply_quality(with_quality, file);
     const JsonNode root(with_quality, file);
@@ -236,19 +237,22 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file) {
     }
     if (auto v = reader.optional("shapes")) {
         for (const JsonNode& s : v->elements()) {
-            scene.shapes.push_back(parse_shape(s, material_index, scene.base_dir));
+            scene.shapes.push_back(cache ? cache->shape(s, material_index, scene.base_dir)
+                                         : parse_shape(s, material_index, scene.base_dir));
         }
     }
     if (auto v = reader.optional("lights")) {
         for (const JsonNode& l : v->elements()) {
-            scene.lights.push_back(parse_light(l, scene.lights.size()));
+            scene.lights.push_back(cache ? cache->light(l, scene.lights.size())
+                                         : parse_light(l, scene.lights.size()));
         }
     }
     if (auto v = reader.optional("media")) {
         if (v->size() > kMaxMedia)
             v->fail("at most " + std::to_string(kMaxMedia) + " media");
         for (const JsonNode& m : v->elements()) {
-            scene.media.push_back(parse_medium(m, scene.media.size(), scene.base_dir));
+            scene.media.push_back(cache ? cache->medium(m, scene.media.size(), scene.base_dir)
+                                        : parse_medium(m, scene.media.size(), scene.base_dir));
         }
     }
     // Unless the scene names one: exact stretches suit homogeneous media, residual ratio
@@ -266,9 +270,7 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file) {
 }
 
 SceneDesc load_scene(const std::string& path, const std::vector<Override>& overrides) {
-    Json root = read_json_file(path);
-    apply_overrides(root, overrides, path);
-    return parse_scene(root, path);
+    return parse_scene(animated_document(read_json_file(path), overrides, 0, path), path);
 }
 
 }  // namespace kasumi

@@ -17,12 +17,16 @@ bool SurfaceOcclusion::occluded_direction(const Vec3& from, const Vec3& directio
     return m_scene.occluded(Ray{from, direction, 0.0f, kInfinity});
 }
 
-SceneRuntime::SceneRuntime(SceneDesc desc)
+SceneRuntime::SceneRuntime(SceneDesc desc) : SceneRuntime(std::move(desc), nullptr) {}
+
+SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces)
     : m_desc(std::move(desc)),
       m_plan(make_plan(m_desc)),
       m_camera(m_desc.camera, m_desc.film.width, m_desc.film.height) {
-    if (m_plan.surfaces)
-        m_surfaces = std::make_unique<SurfaceScene>(m_desc.shapes);
+    if (m_plan.surfaces) {
+        m_surfaces =
+            surfaces ? std::move(surfaces) : std::make_shared<SurfaceScene>(m_desc.shapes);
+    }
     if (m_plan.shadow_rays)
         m_occlusion = std::make_unique<SurfaceOcclusion>(*m_surfaces);
     if (m_plan.volume)

@@ -29,11 +29,16 @@ class SurfaceOcclusion final : public OcclusionQuery {
 class SceneRuntime {
   public:
     explicit SceneRuntime(SceneDesc desc);
+    /// As above, but takes `surfaces` as the scene's BVH instead of building one when the plan
+    /// needs it (null: build). The caller guarantees it was built from the same desc.shapes
+    /// (render/sequence.h reuses one across the frames of a sequence).
+    SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces);
 
     const SceneDesc& desc() const { return m_desc; }
     const Plan& plan() const { return m_plan; }
     const Camera& camera() const { return m_camera; }
     const SurfaceScene* surfaces() const { return m_surfaces.get(); }
+    std::shared_ptr<const SurfaceScene> shared_surfaces() const { return m_surfaces; }
     const MediumSet& media() const { return m_media; }
     /// The sky (atmosphere, sun, tables); null without an atmosphere.
     const SkyRenderer* sky() const { return m_sky.get(); }
@@ -46,7 +51,7 @@ class SceneRuntime {
     SceneDesc m_desc;
     Plan m_plan;
     Camera m_camera;
-    std::unique_ptr<SurfaceScene> m_surfaces;
+    std::shared_ptr<const SurfaceScene> m_surfaces;
     std::unique_ptr<SurfaceOcclusion> m_occlusion;
     MediumSet m_media;
     std::unique_ptr<SkyRenderer> m_sky;
