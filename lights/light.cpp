@@ -102,3 +102,13 @@ std::string light_type_name(const Light& light) {
 }
 
 }  // namespace kasumi
+
+namespace kasumi {
+
+int shadow_map_resolution(const Light& light) {
+    if (light.shadow_map.resolution > 0)
+        return light.shadow_map.resolution;
+    return is_delta(light) ? 1024 : 512;
+}
+
+}  // namespace kasumi

@@ -32,8 +32,19 @@ struct PointLight {
 
 /// How a light's visibility is decided.
 enum class ShadowMode {
-    Ray,   ///< shadow rays: one for a delta light, `samples` for an extended one
-    None,  ///< the light is never blocked
+    Ray,           ///< shadow rays: one for a delta light, `samples` for an extended one
+    None,          ///< the light is never blocked
+    Map,           ///< depth maps rendered from the light once per render (surface/shadow_map.h)
+    ShadowVolume,  ///< Crow's shadow volumes of the meshes, point-like lights only
+};
+
+/// Settings of a light's shadow maps (docs/lights.md, "Shadow maps").
+struct ShadowMapSettings {
+    int resolution = 0;       ///< texels along each side of each map; 0: 1024 (area lights 512)
+    float bias = 0.0f;        ///< constant depth bias, m; 0: two texels' world size
+    float slope_bias = 1.5f;  ///< texels of depth per unit tan θ of the receiver
+    int pcf_radius = 1;       ///< percentage-closer filter over (2r + 1)² taps; 0: one tap
+    int views = 8;            ///< area lights: maps from this many points on the light
 };
 
 struct Light {
@@ -43,7 +54,11 @@ struct Light {
         emitter;
     ShadowMode shadows = ShadowMode::Ray;
     int samples = 16;  ///< shadow samples per shading point for extended (non-delta) lights
+    ShadowMapSettings shadow_map;  ///< used when shadows == ShadowMode::Map
 };
+
+/// Texels along each side of the light's shadow maps: `resolution`, or its default.
+int shadow_map_resolution(const Light& light);
 
 /// True for lights that emit from one point or direction (directional, point, spot,
 /// goniometric): a single shadow ray decides their visibility.

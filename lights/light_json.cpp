@@ -124,6 +124,39 @@ SphereLight parse_sphere(JsonObjectReader& reader, const Rgb& color) {
     return l;
 }
 
+int read_int_in(const JsonNode& node, int lo, int hi) {
+    const int64_t v = node.as_int();
+    if (v < lo || v > hi)
+        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(v);
+}
+
+void parse_shadow_map_settings(const JsonNode& node, Light& light) {
+    JsonObjectReader reader(node);
+    ShadowMapSettings& m = light.shadow_map;
+    if (const auto r = reader.optional("resolution"))
+        m.resolution = read_int_in(*r, 16, 8192);
+    if (const auto b = reader.optional("bias"))
+        m.bias = b->non_negative();
+    if (const auto b = reader.optional("slope_bias"))
+        m.slope_bias = b->non_negative();
+    if (const auto r = reader.optional("pcf_radius"))
+        m.pcf_radius = read_int_in(*r, 0, 8);
+    if (const auto v = reader.optional("views")) {
+        if (is_delta(light))
+            v->fail("views applies to line, polygon and sphere lights; a " +
+                    light_type_name(light) + " light has one centre of projection");
+        m.views = read_int_in(*v, 1, 64);
+    }
+    // Every view of a point-like or area light may be a cube of six faces; cap the memory.
+    const int64_t res = shadow_map_resolution(light);
+    const int64_t texels = (is_delta(light) ? 1 : m.views) * 6 * res * res;
+    if (texels > (int64_t(1) << 28))
+        node.fail("the maps would hold " + std::to_string(texels) +
+                  " depth texels (views x 6 faces x resolution^2); the limit is 2^28 (1 GiB)");
+    reader.finish();
+}
+
 void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
     if (const auto s = reader.optional("shadows")) {
         const std::string mode = s->as_string();
@@ -131,15 +164,24 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
             light.shadows = ShadowMode::Ray;
         } else if (mode == "none") {
             light.shadows = ShadowMode::None;
-        } else if (mode == "map" || mode == "shadow-volume") {
-            s->fail("\"" + mode +
-                    "\" shadows are not implemented in this build (use \"ray\" or "
-                    "\"none\")");
+        } else if (mode == "map") {
+            light.shadows = ShadowMode::Map;
+        } else if (mode == "shadow-volume") {
+            // Shadow volumes extrude silhouettes away from one point (Crow 1977).
+            if (!is_delta(light) || std::holds_alternative<DirectionalLight>(light.emitter))
+                s->fail("\"shadow-volume\" shadows need a point, spot or goniometric light (a " +
+                        light_type_name(light) + " light has no single centre of projection)");
+            light.shadows = ShadowMode::ShadowVolume;
         } else {
             s->fail(
                 "unknown shadow mode (expected \"ray\", \"none\", \"map\" or "
                 "\"shadow-volume\")");
         }
+    }
+    if (const auto m = reader.optional("shadow_map")) {
+        if (light.shadows != ShadowMode::Map)
+            m->fail("shadow_map applies to lights with \"shadows\": \"map\"");
+        parse_shadow_map_settings(*m, light);
     }
     if (const auto n = reader.optional("samples")) {
         if (is_delta(light))

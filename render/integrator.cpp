@@ -2,6 +2,7 @@
 
 #include "render/gi.h"
 #include "render/whitted.h"
+#include "surface/emitter_hit.h"
 
 #include "volume/transmittance.h"
 #include "volume/volume_path.h"
@@ -115,7 +116,16 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
                 if (blocked)
                     continue;
             }
-            reflected += phong_brdf(material, ns, wo, in.wi) * in.irradiance * cos_theta * t_media;
+            float visibility = 1.0f;
+            if (light.shadows == ShadowMode::Map || light.shadows == ShadowMode::ShadowVolume) {
+                visibility =
+                    scene.staged_visibility(static_cast<size_t>(&light - desc.lights.data()),
+                                            hit.position, ng, origin, in.light_position, wo);
+                if (!(visibility > 0.0f))
+                    continue;
+            }
+            reflected += phong_brdf(material, ns, wo, in.wi) * in.irradiance * cos_theta * t_media *
+                         visibility;
         }
         radiance += shadow_sample_weight(light, hit.position, ns, unshadowed) * reflected;
     }
@@ -158,6 +168,17 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
     }
     if (!sample.hit)
         sample.surface = scene.desc().background;
+    if (scene.plan().visible_lights) {
+        // Area lights in front of the first surface are seen with their luminance.
+        if (const auto light = intersect_emitters(
+                scene.desc().lights, Ray{ray.origin, ray.direction, ray.t_min, t_end})) {
+            sample.hit = true;
+            t_end = light->t;
+            sample.depth = light->t * glm::dot(ray.direction, scene.camera().forward());
+            sample.albedo = Rgb(0.0f);
+            sample.surface = light->radiance;
+        }
+    }
 
     if (scene.plan().volume) {
         Ray segment = ray;

@@ -2,9 +2,12 @@
 
 #include "render/gi_plan.h"
 #include "render/quality_plan.h"
+#include "surface/emitter_hit.h"
+#include "surface/shadow_map.h"
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
 
+#include <cstdio>
 #include <sstream>
 
 namespace kasumi {
@@ -62,6 +65,81 @@ std::string estimator_summary(const SceneDesc& scene) {
     return text;
 }
 
+std::string format_g(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+}
+
+std::string join(const std::vector<std::string>& items) {
+    std::string text;
+    for (const std::string& item : items)
+        text += (text.empty() ? "" : "; ") + item;
+    return text;
+}
+
+/// Soft shadows, shadow maps, shadow volumes, Whitted recursion and lights seen directly.
+void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
+    const bool shadows_on = !scene.shapes.empty() && scene.render.shadows;
+    const char* why_off =
+        scene.shapes.empty() ? "no shapes can cast shadows" : "render.shadows is false";
+    std::vector<std::string> soft, maps, volumes;
+    for (const Light& light : scene.lights) {
+        if (!is_delta(light) && light.shadows == ShadowMode::Ray)
+            soft.push_back(light.name + ": " + std::to_string(light.samples) + " shadow rays");
+        if (light.shadows == ShadowMode::Map)
+            maps.push_back(light.name + ": " + describe_shadow_maps(light));
+        if (light.shadows == ShadowMode::ShadowVolume)
+            volumes.push_back(light.name);
+    }
+    plan.stages.push_back(
+        {"soft-shadows", shadows_on && !soft.empty(),
+         !shadows_on    ? why_off
+         : soft.empty() ? "no line, polygon or sphere light with \"shadows\": \"ray\""
+                        : "extended lights sampled per shading point, ratio estimator (analytic "
+                          "illuminance times visible fraction): " +
+                              join(soft)});
+    plan.shadow_maps = shadows_on && !maps.empty();
+    plan.stages.push_back(
+        {"shadow-maps", plan.shadow_maps,
+         !shadows_on    ? why_off
+         : maps.empty() ? "no light has \"shadows\": \"map\""
+                        : "depth rendered from the light by ray casting once per render, before "
+                          "the first pixel; bias + slope-scaled bias, PCF: " +
+                              join(maps)});
+    plan.shadow_volumes = shadows_on && !volumes.empty();
+    plan.stages.push_back(
+        {"shadow-volumes", plan.shadow_volumes,
+         !shadows_on       ? why_off
+         : volumes.empty() ? "no light has \"shadows\": \"shadow-volume\""
+                           : "silhouette edges of boxes, quads and meshes extruded from the light, "
+                             "closed by caps; depth-fail counting by ray casting (spheres: "
+                             "shadow rays): " +
+                                 join(volumes)});
+    bool specular = false;
+    for (const Shape& shape : scene.shapes) {
+        const Material& m = scene.materials[shape.material];
+        specular = specular || std::holds_alternative<MirrorMaterial>(m) ||
+                   std::holds_alternative<DielectricMaterial>(m);
+    }
+    const WhittedSettings& whitted = scene.render.whitted;
+    plan.stages.push_back(
+        {"whitted", specular,
+         specular ? "mirror/dielectric surfaces: reflected and refracted rays (exact Fresnel), "
+                    "max_depth " +
+                        std::to_string(whitted.max_depth) + ", min_weight " +
+                        format_g(whitted.min_weight)
+                  : "no mirror or dielectric surface: no secondary rays"});
+    plan.visible_lights = has_visible_emitters(scene.lights);
+    plan.stages.push_back(
+        {"visible-lights", plan.visible_lights,
+         plan.visible_lights
+             ? "polygon and sphere lights seen by camera and Whitted rays with their luminance "
+               "(point, spot, goniometric, directional and line lights are invisible)"
+             : "no polygon or sphere light (point-like, directional and line lights are "
+               "invisible)"});
+}
+
 }  // namespace
 
 Plan make_plan(const SceneDesc& scene) {
@@ -90,6 +168,8 @@ Plan make_plan(const SceneDesc& scene) {
                            : !scene.render.shadows ? "render.shadows is false"
                            : !has_shapes           ? "no shapes can cast shadows"
                                                    : "no lights"});
+
+    add_shadow_stages(scene, plan);
 
     plan.ambient = has_shapes && max_component(scene.ambient) > 0.0f && any_ambient_material(scene);
     plan.stages.push_back({"ambient", plan.ambient,

@@ -23,6 +23,10 @@ struct Plan {
     bool ambient = false;        ///< Phong ambient term
     bool volume = false;         ///< media: transmittance along camera rays
     bool in_scattering = false;  ///< media: single-scattered light
+
+    bool shadow_maps = false;     ///< depth maps from lights with "shadows": "map"
+    bool shadow_volumes = false;  ///< shadow volumes for lights with "shadows": "shadow-volume"
+    bool visible_lights = false;  ///< camera and Whitted rays see polygon and sphere lights
 };
 
 Plan make_plan(const SceneDesc& scene);

@@ -17,6 +17,21 @@ bool SurfaceOcclusion::occluded_direction(const Vec3& from, const Vec3& directio
     return m_scene.occluded(Ray{from, direction, 0.0f, kInfinity});
 }
 
+float SceneRuntime::staged_visibility(size_t light, const Vec3& p, const Vec3& n,
+                                      const Vec3& origin, const Vec3& light_point,
+                                      const Vec3& wo) const {
+    if (m_shadow_maps != nullptr) {
+        if (const LightShadowMaps* maps = m_shadow_maps->maps(light))
+            return maps->visibility(p, n, light_point);
+    }
+    if (m_shadow_volumes != nullptr) {
+        // Depth-fail counting along the eye ray continued beyond the point.
+        if (const ShadowVolumes* volumes = m_shadow_volumes->volumes(light))
+            return volumes->in_shadow(origin, -wo) ? 0.0f : 1.0f;
+    }
+    return 1.0f;
+}
+
 SceneRuntime::SceneRuntime(SceneDesc desc) : SceneRuntime(std::move(desc), nullptr) {}
 
 SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces)
@@ -29,6 +44,11 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
     }
     if (m_plan.shadow_rays)
         m_occlusion = std::make_unique<SurfaceOcclusion>(*m_surfaces);
+    if (m_plan.shadow_maps)
+        m_shadow_maps = std::make_unique<ShadowMapSet>(m_desc.lights, *m_surfaces);
+    if (m_plan.shadow_volumes)
+        m_shadow_volumes =
+            std::make_unique<ShadowVolumeSet>(m_desc.shapes, m_desc.lights, m_surfaces->bounds());
     if (m_plan.volume)
         m_media = MediumSet(m_desc.media);
     if (m_desc.sky)

@@ -5,6 +5,8 @@
 #include "core/scene_queries.h"
 #include "render/plan.h"
 #include "render/scene.h"
+#include "surface/shadow_map.h"
+#include "surface/shadow_volume.h"
 #include "surface/surface_scene.h"
 #include "volume/medium_set.h"
 #include "volume/sky_renderer.h"
@@ -44,6 +46,16 @@ class SceneRuntime {
     const SkyRenderer* sky() const { return m_sky.get(); }
     /// Null when the plan has no shadow rays.
     const OcclusionQuery* occlusion() const { return m_occlusion.get(); }
+    /// Visibility in [0, 1] of `light_point` (the light's position, or a sampled point on it)
+    /// of light `light` from the surface point p (unit geometric normal n; `origin` is p offset
+    /// off the surface toward the light; `wo` points toward the viewer) by the light's shadow
+    /// maps or shadow volumes; 1 for lights with other shadow modes.
+    float staged_visibility(size_t light, const Vec3& p, const Vec3& n, const Vec3& origin,
+                            const Vec3& light_point, const Vec3& wo) const;
+    /// Null unless the plan has shadow maps (built once, with the runtime).
+    const ShadowMapSet* shadow_maps() const { return m_shadow_maps.get(); }
+    /// Null unless the plan has shadow volumes.
+    const ShadowVolumeSet* shadow_volumes() const { return m_shadow_volumes.get(); }
     /// The render.gi method and its precomputation (render/gi.h); null for "none".
     const GiMethod* gi() const { return m_gi.get(); }
 
@@ -53,6 +65,8 @@ class SceneRuntime {
     Camera m_camera;
     std::shared_ptr<const SurfaceScene> m_surfaces;
     std::unique_ptr<SurfaceOcclusion> m_occlusion;
+    std::unique_ptr<ShadowMapSet> m_shadow_maps;
+    std::unique_ptr<ShadowVolumeSet> m_shadow_volumes;
     MediumSet m_media;
     std::unique_ptr<SkyRenderer> m_sky;
     std::shared_ptr<const GiMethod> m_gi;

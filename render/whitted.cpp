@@ -2,6 +2,7 @@
 
 #include "render/gi.h"
 #include "render/integrator.h"
+#include "surface/emitter_hit.h"
 #include "surface/fresnel.h"
 
 #include <algorithm>
@@ -104,6 +105,14 @@ Rgb trace_whitted_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
         if (const auto hit = surfaces->intersect(ray)) {
             t_end = hit->t;
             surface = shade_hit(scene, ray, *hit, rng, counters, depth, weight);
+        }
+    }
+    if (scene.plan().visible_lights) {
+        // A mirror or glass shows the area lights in front of the next surface.
+        if (const auto light = intersect_emitters(
+                scene.desc().lights, Ray{ray.origin, ray.direction, ray.t_min, t_end})) {
+            t_end = light->t;
+            surface = light->radiance;
         }
     }
     if (!scene.plan().volume)

@@ -23,7 +23,8 @@ LightContribution unshadowed(const MediumSet& media, const MediumInterval& inter
                              const Light& light, const Vec3& x, const Vec3& wo, Pcg32& rng) {
     LightContribution c;
     c.incident = sample_incident(light, x, rng);
-    c.casts_shadows = light.shadows == ShadowMode::Ray;
+    // Media test map and shadow-volume lights with shadow rays too (docs/lights.md).
+    c.casts_shadows = light.shadows != ShadowMode::None;
     if (is_black(c.incident.irradiance))
         return c;
     const Rgb scatter = media.scattering(interval, scattering_cosine(wo, c.incident.wi));

@@ -108,8 +108,25 @@ TEST(LightJson, BadExtendedLightsAreLocated) {
     has(R"({"type": "spot", "position": [0, 0, 0], "direction": [0, -1, 0], "intensity_cd": 1,
         "cone_deg": 30, "falloff_deg": 40})",
         "/lights/0/falloff_deg = 40: must be in [0, cone_deg]");
-    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "map"})",
-        "/lights/0/shadows = \"map\": \"map\" shadows are not implemented in this build");
+    has(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "luminance_cd_m2": 1,
+        "shadows": "shadow-volume"})",
+        "/lights/0/shadows = \"shadow-volume\": \"shadow-volume\" shadows need a point, spot or "
+        "goniometric light");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1,
+        "shadow_map": {"resolution": 512}})",
+        "/lights/0/shadow_map = {\"resolution\":512}: shadow_map applies to lights with");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "map",
+        "shadow_map": {"resolution": 8}})",
+        "/lights/0/shadow_map/resolution = 8: must be an integer in [16, 8192]");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "map",
+        "shadow_map": {"views": 4}})",
+        "/lights/0/shadow_map/views = 4: views applies to line, polygon and sphere lights");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "map",
+        "shadow_map": {"resolution": 8192}})",
+        "the limit is 2^28");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "map",
+        "shadow_map": {"pcf": 1}})",
+        "/lights/0/shadow_map/pcf");
     has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadows": "soft"})",
         "unknown shadow mode");
     has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "samples": 4})",

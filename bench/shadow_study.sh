@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Shadow maps against ray-traced shadows (docs/lights.md, "Measured"): renders each scene with
+# ray-traced shadows and with shadow maps of resolution 256..4096 (area lights: up to
+# MAX_AREA_RES, their maps being views x 6 faces), and with shadow volumes where the scene has
+# them; prints a Markdown table of the fraction of pixels whose luminance differs by more than
+# 1%, the RMSE (cd/m²) against the ray-traced render, and the median wall time of RUNS renders
+# (map building included). The same seed gives both renders the same samples, so the
+# difference is the visibility alone.
+#
+# Usage: bench/shadow_study.sh [BUILD_DIR]   (default build/release; needs targets kasumi and
+#        shadow_compare).  Environment: RUNS (default 3), THREADS (default 2), OUT (scratch dir),
+#        RESOLUTIONS (default "256 512 1024 2048 4096"), MAX_AREA_RES (default 1024).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${1:-build/release}
+KASUMI=$BUILD/apps/kasumi
+COMPARE=$BUILD/bench/shadow_compare
+RUNS=${RUNS:-3}
+THREADS=${THREADS:-2}
+OUT=${OUT:-$(mktemp -d /tmp/kasumi_shadow_study.XXXXXX)}
+RESOLUTIONS=${RESOLUTIONS:-"256 512 1024 2048 4096"}
+MAX_AREA_RES=${MAX_AREA_RES:-1024}
+mkdir -p "$OUT"
+
+# render NAME SCENE ARGS...: RUNS renders to $OUT/NAME.exr; prints the median wall time (s).
+render() {
+    local name=$1 scene=$2
+    shift 2
+    local times=()
+    for ((run = 0; run < RUNS; ++run)); do
+        local start end
+        start=$(date +%s.%N)
+        "$KASUMI" render "$scene" -o "$OUT/$name.exr" --threads "$THREADS" -q "$@"
+        end=$(date +%s.%N)
+        times+=("$(echo "$end - $start" | bc -l)")
+    done
+    printf '%s\n' "${times[@]}" | sort -g | awk '{t[NR] = $1} END {printf "%.2f", t[int((NR + 1) / 2)]}'
+}
+
+# compare REF TEST: "differ_fraction | rmse"
+compare() {
+    "$COMPARE" "$OUT/$1.exr" "$OUT/$2.exr" 0.01 |
+        sed -E 's/.*"differ_fraction": ([^,]*), "rmse": ([^,]*),.*/\1 | \2/'
+}
+
+# study NAME SCENE LIGHT_COUNT MAX_RES: one table block for a scene whose first LIGHT_COUNT
+# lights are switched between "ray" and "map".
+study() {
+    local name=$1 scene=$2 count=$3 max_res=$4
+    local ray_sets=() i
+    for ((i = 0; i < count; ++i)); do ray_sets+=(--set "/lights/$i/shadows=ray"); done
+    local t_ray
+    t_ray=$(render "${name}_ray" "$scene" "${ray_sets[@]}")
+    echo "| $name | ray-traced | 0 | 0 | $t_ray |"
+    for res in $RESOLUTIONS; do
+        ((res > max_res)) && continue
+        local map_sets=()
+        for ((i = 0; i < count; ++i)); do
+            map_sets+=(--set "/lights/$i/shadows=map" --set "/lights/$i/shadow_map={\"resolution\": $res}")
+        done
+        local t
+        t=$(render "${name}_map$res" "$scene" "${map_sets[@]}")
+        echo "| $name | map $res² | $(compare "${name}_ray" "${name}_map$res") | $t |"
+    done
+}
+
+echo "| scene | shadows | pixels differing (> 1%) | RMSE (cd/m²) | time (s, median of $RUNS) |"
+echo "|---|---|---|---|---|"
+study shadow_maps data/scenes/shadow_maps.json 3 4096
+study soft_shadows data/scenes/soft_shadows.json 2 "$MAX_AREA_RES"
+t_ray=$(render volumes_ray data/scenes/shadow_volumes.json --set /lights/0/shadows=ray)
+echo "| shadow_volumes | ray-traced | 0 | 0 | $t_ray |"
+t_vol=$(render volumes_sv data/scenes/shadow_volumes.json)
+echo "| shadow_volumes | shadow-volume | $(compare volumes_ray volumes_sv) | $t_vol |"

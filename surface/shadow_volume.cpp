@@ -1,0 +1,251 @@
+#include "surface/shadow_volume.h"
+
+#include <map>
+#include <tuple>
+
+namespace kasumi {
+
+namespace {
+
+/// A shape as an indexed triangle list with vertices welded by exact position, so that
+/// triangles sharing an edge share its two indices (boxes: 8 corners, 12 triangles).
+struct WeldedMesh {
+    std::vector<Vec3> positions;
+    std::vector<std::array<uint32_t, 3>> triangles;
+};
+
+class Welder {
+  public:
+    explicit Welder(WeldedMesh& mesh) : m_mesh(mesh) {}
+    uint32_t index(const Vec3& p) {
+        const auto key = std::make_tuple(p.x, p.y, p.z);
+        const auto it = m_index.find(key);
+        if (it != m_index.end())
+            return it->second;
+        const auto i = static_cast<uint32_t>(m_mesh.positions.size());
+        m_mesh.positions.push_back(p);
+        m_index.emplace(key, i);
+        return i;
+    }
+    void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
+        m_mesh.triangles.push_back({index(a), index(b), index(c)});
+    }
+    void quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+        triangle(a, b, c);
+        triangle(a, c, d);
+    }
+
+  private:
+    WeldedMesh& m_mesh;
+    std::map<std::tuple<float, float, float>, uint32_t> m_index;
+};
+
+/// Boxes wound outward as in surface_scene.cpp: face at max of `axis` counter-clockwise toward
+/// +axis in the cyclic (axis, u, v) order, the face at min the other way round.
+WeldedMesh box_mesh(const BoxShape& b) {
+    WeldedMesh mesh;
+    Welder weld(mesh);
+    for (int axis = 0; axis < 3; ++axis) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        for (int side = 0; side < 2; ++side) {
+            Vec3 c[4];
+            const float uv[4][2] = {{b.min[u], b.min[v]},
+                                    {b.max[u], b.min[v]},
+                                    {b.max[u], b.max[v]},
+                                    {b.min[u], b.max[v]}};
+            for (int k = 0; k < 4; ++k) {
+                c[k][axis] = side ? b.max[axis] : b.min[axis];
+                c[k][u] = uv[k][0];
+                c[k][v] = uv[k][1];
+            }
+            if (side)
+                weld.quad(c[0], c[1], c[2], c[3]);
+            else
+                weld.quad(c[0], c[3], c[2], c[1]);
+        }
+    }
+    return mesh;
+}
+
+WeldedMesh quad_mesh(const QuadShape& q) {
+    WeldedMesh mesh;
+    Welder weld(mesh);
+    weld.quad(q.vertices[0], q.vertices[1], q.vertices[2], q.vertices[3]);
+    return mesh;
+}
+
+WeldedMesh triangle_mesh(const MeshShape& m) {
+    WeldedMesh mesh;
+    Welder weld(mesh);
+    for (const auto& t : m.mesh.triangles)
+        weld.triangle(m.mesh.positions[t[0]], m.mesh.positions[t[1]], m.mesh.positions[t[2]]);
+    return mesh;
+}
+
+using Edge = std::pair<uint32_t, uint32_t>;
+
+/// Closed and consistently wound: every directed edge appears once and its reverse once.
+bool is_closed(const WeldedMesh& mesh) {
+    std::map<Edge, int> edges;
+    for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k)
+            ++edges[{t[k], t[(k + 1) % 3]}];
+    for (const auto& [edge, n] : edges) {
+        const auto reverse = edges.find({edge.second, edge.first});
+        if (n != 1 || reverse == edges.end() || reverse->second != 1)
+            return false;
+    }
+    return true;
+}
+
+void add_volumes(const WeldedMesh& mesh, const Vec3& light, float far_distance,
+                 ShadowVolumeGeometry& out) {
+    const bool closed = is_closed(mesh);
+    // Triangles turned to face the light, counter-clockwise seen from it.
+    std::vector<std::array<uint32_t, 3>> caps;
+    for (const auto& t : mesh.triangles) {
+        const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+        const float facing = glm::dot(glm::cross(b - a, c - a), light - a);
+        if (facing > 0.0f)
+            caps.push_back(t);
+        else if (facing < 0.0f && !closed)
+            caps.push_back({t[0], t[2], t[1]});
+        // facing == 0: edge-on to the light, bounds no volume.
+    }
+    // Silhouette: directed cap edges whose reverse is no cap edge. Where two caps share an edge
+    // (traversed both ways), their volumes' side walls would coincide with opposite normals
+    // and cancel in every count, so neither is built.
+    std::map<Edge, int> edges;
+    for (const auto& t : caps)
+        for (int k = 0; k < 3; ++k)
+            ++edges[{t[k], t[(k + 1) % 3]}];
+    const auto extrude = [&](uint32_t i) {
+        const Vec3 d = mesh.positions[i] - light;
+        return light + d * (far_distance / glm::length(d));
+    };
+    for (const auto& [edge, n] : edges) {
+        const auto reverse = edges.find({edge.second, edge.first});
+        const int unmatched = n - (reverse == edges.end() ? 0 : reverse->second);
+        for (int k = 0; k < unmatched; ++k) {
+            out.sides.push_back({mesh.positions[edge.first], extrude(edge.first),
+                                 extrude(edge.second), mesh.positions[edge.second]});
+            ++out.silhouette_edges;
+        }
+    }
+    for (const auto& t : caps) {
+        out.near_caps.push_back({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
+        out.far_caps.push_back({extrude(t[0]), extrude(t[2]), extrude(t[1])});
+    }
+}
+
+}  // namespace
+
+ShadowVolumeGeometry build_shadow_volumes(const std::vector<Shape>& shapes,
+                                          const Vec3& light_position, const Bounds3& scene_bounds) {
+    const Vec3 center = 0.5f * (scene_bounds.min + scene_bounds.max);
+    const float radius = 0.5f * glm::length(scene_bounds.extent());
+    const float far_distance = 2.0f * (glm::length(light_position - center) + radius) + 1.0f;
+    ShadowVolumeGeometry out;
+    for (const Shape& shape : shapes) {
+        if (const auto* box = std::get_if<BoxShape>(&shape.geometry))
+            add_volumes(box_mesh(*box), light_position, far_distance, out);
+        else if (const auto* quad = std::get_if<QuadShape>(&shape.geometry))
+            add_volumes(quad_mesh(*quad), light_position, far_distance, out);
+        else if (const auto* mesh = std::get_if<MeshShape>(&shape.geometry))
+            add_volumes(triangle_mesh(*mesh), light_position, far_distance, out);
+    }
+    return out;
+}
+
+ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const Vec3& light_position,
+                             const Bounds3& scene_bounds)
+    : m_light(light_position),
+      m_geometry(build_shadow_volumes(shapes, light_position, scene_bounds)) {
+    MeshShape faces;
+    faces.file = "(shadow volumes)";
+    TriangleMesh& mesh = faces.mesh;
+    const auto add = [&mesh](const Vec3& a, const Vec3& b, const Vec3& c) {
+        const auto base = static_cast<uint32_t>(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), {a, b, c});
+        mesh.triangles.push_back({base, base + 1, base + 2});
+    };
+    for (const auto& t : m_geometry.near_caps)
+        add(t[0], t[1], t[2]);
+    for (const auto& t : m_geometry.far_caps)
+        add(t[0], t[1], t[2]);
+    for (const auto& q : m_geometry.sides) {
+        add(q[0], q[1], q[2]);
+        add(q[0], q[2], q[3]);
+    }
+    if (!mesh.triangles.empty()) {
+        Shape shape;
+        shape.name = "shadow volumes";
+        shape.geometry = std::move(faces);
+        m_faces = std::make_unique<SurfaceScene>(std::vector<Shape>{std::move(shape)});
+    }
+    std::vector<Shape> spheres;
+    for (const Shape& shape : shapes)
+        if (std::holds_alternative<SphereShape>(shape.geometry))
+            spheres.push_back(shape);
+    if (!spheres.empty())
+        m_spheres = std::make_unique<SurfaceScene>(spheres);
+}
+
+ShadowVolumes::~ShadowVolumes() = default;
+
+int ShadowVolumes::count_crossings(const Ray& ray, float sign_of_exit) const {
+    if (m_faces == nullptr)
+        return 0;
+    int count = 0;
+    Ray r = ray;
+    // Each face is crossed at most once; the bound only guards against a stuck loop.
+    const size_t max_crossings = 3 * m_geometry.near_caps.size() + 2 * m_geometry.sides.size() + 8;
+    for (size_t k = 0; k < max_crossings; ++k) {
+        const auto hit = m_faces->intersect(r);
+        if (!hit)
+            break;
+        // Faces sharing an edge hit at the same t are counted once: the next search starts
+        // strictly after t.
+        const bool exits = glm::dot(hit->geometric_normal, r.direction) > 0.0f;
+        count += exits ? static_cast<int>(sign_of_exit) : -static_cast<int>(sign_of_exit);
+        r.t_min = hit->t;
+    }
+    return count;
+}
+
+int ShadowVolumes::depth_fail_count(const Vec3& p, const Vec3& direction) const {
+    return count_crossings(Ray{p, direction, 0.0f, kInfinity}, +1.0f);
+}
+
+int ShadowVolumes::depth_pass_count(const Vec3& eye, const Vec3& p) const {
+    const Vec3 d = p - eye;
+    const float distance = glm::length(d);
+    if (!(distance > 0.0f))
+        return 0;
+    return count_crossings(Ray{eye, d / distance, 0.0f, distance}, -1.0f);
+}
+
+bool ShadowVolumes::in_shadow(const Vec3& p, const Vec3& view_direction) const {
+    if (depth_fail_count(p, view_direction) > 0)
+        return true;
+    if (m_spheres == nullptr)
+        return false;
+    const Vec3 d = m_light - p;
+    const float distance = glm::length(d);
+    return distance > 0.0f &&
+           m_spheres->occluded(Ray{p, d / distance, 0.0f, distance * (1.0f - 1e-5f)});
+}
+
+ShadowVolumeSet::ShadowVolumeSet(const std::vector<Shape>& shapes, const std::vector<Light>& lights,
+                                 const Bounds3& scene_bounds) {
+    for (const Light& light : lights) {
+        if (light.shadows != ShadowMode::ShadowVolume) {
+            m_volumes.push_back(nullptr);
+            continue;
+        }
+        const Vec3 position = incident_light(light, Vec3(0.0f)).light_position;
+        m_volumes.push_back(std::make_unique<ShadowVolumes>(shapes, position, scene_bounds));
+    }
+}
+
+}  // namespace kasumi
