@@ -4,6 +4,7 @@
 #include "apps/cloud_command.h"
 #include "apps/commands.h"
 #include "apps/phase_command.h"
+#include "apps/sequence_command.h"
 #include "apps/study_command.h"
 #include "core/error.h"
 
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
     kasumi::add_probe_command(app);
     kasumi::add_phase_command(app);
     kasumi::add_make_cloud_command(app);
+    kasumi::add_sequence_command(app);
     kasumi::add_study_command(app);
     try {
         app.parse(argc, argv);

@@ -1,0 +1,318 @@
+#include "render/sequence.h"
+
+#include "core/color_management.h"
+#include "core/error.h"
+#include "core/exr_io.h"
+#include "render/animation.h"
+#include "render/renderer.h"
+#include "render/sequence_contact_sheet.h"
+
+#include <chrono>
+#include <cstdarg>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+namespace kasumi {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int64_t kMaxFrame = 4294967295;  // the RNG keys frames by 32 bits
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool parse_int64(const std::string& text, int64_t& out) {
+    if (text.empty() || text.size() > 12)
+        return false;
+    out = 0;
+    for (const char c : text) {
+        if (c < '0' || c > '9')
+            return false;
+        out = out * 10 + (c - '0');
+    }
+    return true;
+}
+
+void make_parent_dirs(const std::string& path) {
+    const fs::path parent = fs::path(path).parent_path();
+    if (parent.empty())
+        return;
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec)
+        throw_output_error(path + ": cannot create directory " + parent.string() + ": " +
+                           ec.message());
+}
+
+void log_line(std::FILE* log, const char* format, ...) __attribute__((format(printf, 2, 3)));
+void log_line(std::FILE* log, const char* format, ...) {
+    if (log == nullptr)
+        return;
+    va_list args;
+    va_start(args, format);
+    std::vfprintf(log, format, args);
+    va_end(args);
+    std::fflush(log);
+}
+
+/// The scene document every frame starts from: as `kasumi render` builds it, with film and
+/// render objects created for --res/--spp/--seed overrides, the overrides applied.
+Json base_document(const SequenceOptions& options) {
+    Json doc = read_json_file(options.scene_path);
+    if (doc.is_object()) {
+        for (const char* key : {"film", "render"}) {
+            if (!doc.contains(key))
+                doc[key] = Json::object();
+        }
+    }
+    apply_overrides(doc, options.overrides, options.scene_path);
+    return doc;
+}
+
+PreviewSettings preview_settings(const SceneDesc& desc) {
+    PreviewSettings preview;
+    preview.config_path = default_ocio_config_path();
+    preview.view = desc.render.preview.view;
+    preview.exposure_stops = desc.render.preview.exposure_stops;
+    return preview;
+}
+
+/// What stays fixed over a run: the base document, its animation, the element cache.
+struct SequenceScene {
+    const SequenceOptions& options;
+    Json base;
+    Animation animation;
+    SequenceCache cache;
+
+    explicit SequenceScene(const SequenceOptions& o)
+        : options(o),
+          base(base_document(o)),
+          animation(parse_animation(base, o.scene_path)),
+          cache(o.reuse) {}
+
+    Json document(int64_t frame) const {
+        Json doc = frame_document(base, animation, frame);
+        reapply_overrides(doc, options.overrides, options.scene_path);
+        return doc;
+    }
+};
+
+}  // namespace
+
+std::vector<int64_t> FrameRange::frames() const {
+    std::vector<int64_t> out;
+    for (int64_t f = first; f <= last; f += step)
+        out.push_back(f);
+    return out;
+}
+
+FrameRange parse_frame_range(const std::string& text, const std::string& option) {
+    const auto usage = [&] {
+        throw Error(ErrorKind::Usage, option + " expects A-B[:step] or N (frames 0 to " +
+                                          std::to_string(kMaxFrame) +
+                                          ", A <= B, step >= 1), got \"" + text + "\"");
+    };
+    FrameRange range;
+    std::string span = text;
+    const size_t colon = text.find(':');
+    if (colon != std::string::npos) {
+        span = text.substr(0, colon);
+        if (!parse_int64(text.substr(colon + 1), range.step) || range.step < 1)
+            usage();
+    }
+    const size_t dash = span.find('-');
+    if (dash == std::string::npos) {
+        if (colon != std::string::npos || !parse_int64(span, range.first))
+            usage();
+        range.last = range.first;
+    } else if (!parse_int64(span.substr(0, dash), range.first) ||
+               !parse_int64(span.substr(dash + 1), range.last)) {
+        usage();
+    }
+    if (range.first > range.last || range.last > kMaxFrame)
+        usage();
+    return range;
+}
+
+std::string frame_path(const std::string& pattern, int64_t frame) {
+    std::string out;
+    bool found = false;
+    for (size_t i = 0; i < pattern.size();) {
+        if (pattern[i] != '#') {
+            out += pattern[i++];
+            continue;
+        }
+        size_t n = 0;
+        while (i + n < pattern.size() && pattern[i + n] == '#')
+            ++n;
+        std::string digits = std::to_string(frame);
+        if (digits.size() < n)
+            digits.insert(0, n - digits.size(), '0');
+        out += digits;
+        i += n;
+        found = true;
+    }
+    if (!found) {
+        throw Error(ErrorKind::Usage, "-o \"" + pattern +
+                                          "\": the output pattern needs a run of '#' for the "
+                                          "frame number, e.g. out/sunset.####.exr");
+    }
+    return out;
+}
+
+std::string frame_preview_path(const std::string& pattern, const std::string& preview_dir,
+                               int64_t frame) {
+    fs::path name = fs::path(frame_path(pattern, frame)).filename();
+    name.replace_extension(".png");
+    return (fs::path(preview_dir) / name).string();
+}
+
+std::string default_contact_sheet_path(const std::string& pattern, const std::string& preview_dir) {
+    const fs::path p(pattern);
+    const std::string file = p.filename().string();
+    const std::string name = file.substr(0, file.find('#')) + "contact_sheet.png";
+    const fs::path dir = preview_dir.empty() ? p.parent_path() : fs::path(preview_dir);
+    return (dir / name).string();
+}
+
+SequenceSummary run_sequence(const SequenceOptions& options) {
+    const auto run_start = Clock::now();
+    for (const int64_t f : options.frames) {
+        if (f < 0 || f > kMaxFrame)
+            throw Error(ErrorKind::Usage, "frame " + std::to_string(f) + " is out of range");
+    }
+    (void)frame_path(options.output_pattern, 0);  // a pattern without '#' is a usage error
+    SequenceScene scene(options);
+    SequenceSummary summary;
+    std::map<int64_t, Image> thumbnails;
+    const bool want_sheet = !options.contact_sheet.empty();
+
+    for (const int64_t frame : options.frames) {
+        if (!options.render)
+            break;
+        if (options.cancel != nullptr && options.cancel->load()) {
+            summary.interrupted = true;
+            break;
+        }
+        const std::string path = frame_path(options.output_pattern, frame);
+        const std::string preview_path =
+            options.preview_dir.empty()
+                ? std::string()
+                : frame_preview_path(options.output_pattern, options.preview_dir, frame);
+        if (options.skip_existing && fs::exists(path)) {
+            ++summary.skipped;
+            if (!preview_path.empty() && !fs::exists(preview_path)) {
+                const PreviewSettings own = preview_settings(
+                    parse_scene(scene.document(frame), options.scene_path, &scene.cache));
+                make_parent_dirs(preview_path);
+                write_preview_png(read_exr(path), preview_path, own);
+                log_line(options.log, "frame %s  exists, skipped (preview %s written)\n",
+                         frame_path("######", frame).c_str(), preview_path.c_str());
+            } else {
+                log_line(options.log, "frame %s  exists, skipped: %s\n",
+                         frame_path("######", frame).c_str(), path.c_str());
+            }
+            continue;
+        }
+
+        const auto frame_start = Clock::now();
+        const Json doc = scene.document(frame);
+        SceneDesc desc = parse_scene(doc, options.scene_path, &scene.cache);
+        const std::string key = options.reuse ? bvh_key(doc) : std::string();
+        std::shared_ptr<const SurfaceScene> bvh = scene.cache.surfaces(key);
+        const bool bvh_reused = bvh != nullptr;
+        const SceneRuntime runtime(std::move(desc), std::move(bvh));
+        if (runtime.surfaces() != nullptr && !bvh_reused) {
+            scene.cache.count_bvh_built();
+            scene.cache.remember_surfaces(key, runtime.shared_surfaces());
+        }
+        const double setup_seconds = seconds_since(frame_start);
+
+        RenderOptions render_options;
+        render_options.threads = options.threads;
+        render_options.frame = static_cast<uint32_t>(frame);
+        render_options.progress = options.progress;
+        render_options.cancel = options.cancel;
+        RenderResult result = render_image(runtime, render_options);
+        const ReuseCounts reuse = scene.cache.end_frame();
+        if (result.interrupted) {
+            summary.interrupted = true;
+            log_line(options.log, "frame %s  interrupted: dropped, nothing written\n",
+                     frame_path("######", frame).c_str());
+            break;
+        }
+
+        const auto write_start = Clock::now();
+        Image image = result.film.to_image();
+        image.metadata = options.metadata;
+        image.metadata.insert(
+            image.metadata.end(),
+            {{"scene", options.scene_path},
+             {"frame", std::to_string(frame)},
+             {"spp", std::to_string(runtime.desc().film.spp)},
+             {"seed", std::to_string(runtime.desc().render.seed)},
+             {"units", "scene-linear Rec.709, luminance in cd/m2"},
+             {"stats/nonfinite_samples", std::to_string(result.counters.nonfinite_samples)}});
+        if (!preview_path.empty()) {
+            make_parent_dirs(preview_path);
+            write_preview_png(image, preview_path, preview_settings(runtime.desc()));
+        }
+        make_parent_dirs(path);
+        write_exr(image, path);
+        if (want_sheet)
+            thumbnails.emplace(frame, make_thumbnail(image));
+        const double write_seconds = seconds_since(write_start);
+        const double frame_seconds = seconds_since(frame_start);
+
+        ++summary.rendered;
+        summary.frame_seconds += frame_seconds;
+        summary.render_seconds += result.seconds;
+        log_line(options.log,
+                 "frame %s  %.3f s (scene %.3f s, render %.3f s, write %.3f s)  %s  -> %s\n",
+                 frame_path("######", frame).c_str(), frame_seconds, setup_seconds, result.seconds,
+                 write_seconds, reuse_text(reuse).c_str(), path.c_str());
+        if (result.counters.nonfinite_samples > 0) {
+            log_line(options.log, "frame %s  warning: %llu non-finite samples were dropped\n",
+                     frame_path("######", frame).c_str(),
+                     static_cast<unsigned long long>(result.counters.nonfinite_samples));
+        }
+    }
+    summary.reuse = scene.cache.total();
+
+    if (want_sheet && !summary.interrupted && !options.frames.empty()) {
+        std::vector<Image> loaded;
+        loaded.reserve(options.frames.size());
+        std::vector<const Image*> cells;
+        for (const int64_t frame : options.frames) {
+            const auto it = thumbnails.find(frame);
+            if (it != thumbnails.end()) {
+                cells.push_back(&it->second);
+                continue;
+            }
+            const std::string path = frame_path(options.output_pattern, frame);
+            if (!fs::exists(path)) {
+                ++summary.missing;
+                cells.push_back(nullptr);
+                continue;
+            }
+            loaded.push_back(make_thumbnail(read_exr(path)));
+            cells.push_back(&loaded.back());
+        }
+        // One view and exposure for the whole sheet (the first frame's), so it shows how the
+        // frames' brightness changes.
+        const PreviewSettings sheet_preview = preview_settings(
+            parse_scene(scene.document(options.frames.front()), options.scene_path, &scene.cache));
+        make_parent_dirs(options.contact_sheet);
+        write_preview_png(make_contact_sheet(cells), options.contact_sheet, sheet_preview);
+        summary.contact_sheet = options.contact_sheet;
+    }
+    summary.seconds = seconds_since(run_start);
+    return summary;
+}
+
+}  // namespace kasumi

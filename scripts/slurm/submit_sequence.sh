@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Submits a kasumi sequence to Slurm: an array job of frames (sequence.sbatch) and, after it
+# succeeds, the contact sheet job (contact_sheet.sbatch). Prints both job ids.
+#
+# usage: submit_sequence.sh SCENE FRAMES OUTPUT [-- KASUMI FLAGS...]
+#   e.g. submit_sequence.sh data/scenes/fog_sequence.json 0-239 'out/fog.####.exr' -- --spp 64
+# Environment: FRAMES_PER_TASK (default 1), MAX_PARALLEL (array tasks at once, default 0: no
+# limit), PREVIEW_DIR, KASUMI (binary; default: kasumi on PATH), SBATCH_ARGS (more sbatch flags,
+# e.g. "--partition=cpu --account=abc"), SBATCH (the sbatch command; tests point it at a stub).
+set -euo pipefail
+
+if [ $# -lt 3 ]; then
+  sed -n '2,10p' "$0" >&2
+  exit 2
+fi
+scene="$1" frames="$2" output="$3"
+shift 3
+[ "${1:-}" = "--" ] && shift
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+sbatch="${SBATCH:-sbatch}"
+per="${FRAMES_PER_TASK:-1}"
+
+if ! [[ "$frames" =~ ^([0-9]+)-([0-9]+)(:([0-9]+))?$ ]]; then
+  echo "submit_sequence.sh: FRAMES must be A-B[:step], got '$frames'" >&2
+  exit 2
+fi
+first="${BASH_REMATCH[1]}" last="${BASH_REMATCH[2]}" step="${BASH_REMATCH[4]:-1}"
+if [ "$per" -le 1 ]; then
+  array="$first-$last:$step"                         # index = frame
+else
+  count=$(( (last - first) / step + 1 ))
+  array="0-$(( (count + per - 1) / per - 1 ))"       # index = chunk
+fi
+[ "${MAX_PARALLEL:-0}" -gt 0 ] && array="$array%$MAX_PARALLEL"
+
+export SCENE="$scene" OUTPUT="$output" FRAMES="$frames" FRAMES_PER_TASK="$per"
+export KASUMI="${KASUMI:-kasumi}" KASUMI_ARGS="$*" PREVIEW_DIR="${PREVIEW_DIR:-}"
+# shellcheck disable=SC2086  # SBATCH_ARGS is split into words on purpose
+frames_job=$("$sbatch" --parsable ${SBATCH_ARGS:-} --array="$array" --export=ALL \
+  "$here/sequence.sbatch")
+frames_job="${frames_job%%;*}"
+# shellcheck disable=SC2086
+sheet_job=$("$sbatch" --parsable ${SBATCH_ARGS:-} --dependency="afterok:$frames_job" \
+  --kill-on-invalid-dep=yes --export=ALL "$here/contact_sheet.sbatch")
+echo "frames: job $frames_job (array $array); contact sheet: job ${sheet_job%%;*}"

@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# End-to-end checks of `kasumi sequence` and the Slurm scripts: usage and input errors, a
+# 24-frame run (frames, one log line each, summary, contact sheet), skip-existing leaving files
+# untouched, SIGINT/SIGTERM exit codes with no partial or temporary files, a run killed with
+# SIGKILL resumed by a rerun, `render --frame`, and the sbatch scripts run by hand.
+# usage: sequence_cli_test.sh KASUMI_BINARY SOURCE_DIR
+set -u
+kasumi="$1"
+src="$2"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+failures=0
+scene="$src/data/scenes/fog_sequence.json"
+tiny=(--res 32x18 --spp 1)
+
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect_exit CODE PATTERN -- ARGS...: runs kasumi, checks the exit code and that stderr
+# matches PATTERN (grep -E; empty pattern skips the check).
+expect_exit() {
+  local code="$1" pattern="$2"
+  shift 3
+  "$kasumi" "$@" >"$work/stdout" 2>"$work/stderr"
+  local got=$?
+  if [ "$got" -ne "$code" ]; then
+    fail "kasumi $* exited $got, expected $code; stderr: $(head -c 600 "$work/stderr")"
+  elif [ -n "$pattern" ] && ! grep -qE -- "$pattern" "$work/stderr"; then
+    fail "kasumi $* stderr lacks /$pattern/: $(head -c 600 "$work/stderr")"
+  fi
+}
+
+count_files() { find "$1" -maxdepth 1 -name "$2" 2>/dev/null | wc -l; }
+# Temporaries of core/atomic_file: .<name>.<pid>.<n>.tmp
+count_temps() { find "$1" -maxdepth 1 -name '.*.tmp' 2>/dev/null | wc -l; }
+mtimes() { stat -c '%n %y' "$1"/*.exr 2>/dev/null; }
+
+# Usage errors: exit 2, nothing written.
+expect_exit 2 "'#'" -- sequence "$scene" --frames 0-3 -o "$work/u/frame.exr" "${tiny[@]}"
+expect_exit 2 "--frames" -- sequence "$scene" --frames 5-3 -o "$work/u/f.####.exr"
+expect_exit 2 "--frames" -- sequence "$scene" --frames 0-3:0 -o "$work/u/f.####.exr"
+expect_exit 2 "--frames A-B" -- sequence "$scene" -o "$work/u/f.####.exr"
+expect_exit 2 "not a frame of" -- sequence "$scene" --frames 0-10:2 --frame 3 -o "$work/u/f.####.exr"
+[ -e "$work/u" ] && fail "a usage error wrote output"
+
+# Animation errors: exit 3, one line naming the file and the JSON pointer.
+cat >"$work/bad.json" <<'JSON'
+{"lights": [{"type": "point", "position": [0, 1, 0], "intensity_cd": 10}],
+ "animate": {"/lights/0/intensity_cd": [[0, 1], [9, 5], [9, 6]]}}
+JSON
+expect_exit 3 "bad.json: /animate/~1lights~10~1intensity_cd/2/0 = 9: duplicate key frame" -- \
+  sequence "$work/bad.json" --frames 0-3 -o "$work/b/f.####.exr"
+expect_exit 3 "bad.json: /animate/~1lights~10~1intensity_cd/2/0" -- render "$work/bad.json" -o "$work/b.exr" -q
+expect_exit 3 "bad.json: /animate" -- check "$work/bad.json"
+[ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "error message is not one line: $(cat "$work/stderr")"
+[ -e "$work/b" ] || [ -e "$work/b.exr" ] && fail "an input error wrote output"
+
+# An animated scene checks, and renders one frame with `render --frame`.
+expect_exit 0 "" -- check "$scene"
+expect_exit 0 "" -- render "$scene" --frame 30 "${tiny[@]}" -o "$work/r/f30.exr" -q
+[ -s "$work/r/f30.exr" ] || fail "render --frame wrote no EXR"
+
+# 24 frames: every file, one log line per frame with its time, a summary, the contact sheet.
+expect_exit 0 "" -- sequence "$scene" --frames 0-23 -o "$work/seq/fog.####.exr" "${tiny[@]}" \
+  --preview-dir "$work/prev"
+[ "$(count_files "$work/seq" 'fog.00[0-2][0-9].exr')" -eq 24 ] || fail "not 24 frames: $(ls "$work/seq")"
+[ "$(count_files "$work/prev" 'fog.00[0-2][0-9].png')" -eq 24 ] || fail "not 24 previews"
+[ "$(grep -cE '^frame 0000[0-9][0-9]  [0-9.]+ s \(scene' "$work/stderr")" -eq 24 ] ||
+  fail "not one log line per frame: $(head -c 600 "$work/stderr")"
+grep -q "reused bvh, 3 meshes" "$work/stderr" || fail "the log does not say what was reused"
+grep -qE '^sequence: 24 frames: 24 rendered, 0 skipped' "$work/stderr" || fail "no summary"
+[ -s "$work/prev/fog.contact_sheet.png" ] || fail "no contact sheet in the preview dir"
+grep -q "contact sheet: $work/prev/fog.contact_sheet.png (24 frames, 0 missing)" "$work/stderr" ||
+  fail "the contact sheet is not reported"
+[ "$(count_temps "$work/seq")" -eq 0 ] || fail "temporary files left behind"
+
+# Skip-existing (the default): nothing rendered, files untouched.
+before="$(mtimes "$work/seq")"
+expect_exit 0 "24 skipped" -- sequence "$scene" --frames 0-23 -o "$work/seq/fog.####.exr" "${tiny[@]}"
+[ "$before" = "$(mtimes "$work/seq")" ] || fail "skip-existing touched existing frames"
+expect_exit 0 "1 rendered, 0 skipped" -- sequence "$scene" --frame 4 --no-skip-existing \
+  -o "$work/seq/fog.####.exr" "${tiny[@]}"
+[ "$before" = "$(mtimes "$work/seq")" ] && fail "--no-skip-existing did not rewrite frame 4"
+
+# SIGINT and SIGTERM: exit 130 / 143, finished frames kept, no partial file, no temporaries.
+for sig in INT TERM; do
+  dir="$work/sig$sig"
+  "$kasumi" sequence "$scene" --frames 0-239 -o "$dir/fog.####.exr" --res 64x36 --spp 2 \
+    --no-contact-sheet 2>"$work/sig.log" &
+  pid=$!
+  for _ in $(seq 1 300); do
+    [ "$(count_files "$dir" '*.exr')" -ge 2 ] && break
+    sleep 0.05
+  done
+  kill -s "$sig" "$pid"
+  wait "$pid"
+  got=$?
+  want=130
+  [ "$sig" = TERM ] && want=143
+  [ "$got" -eq "$want" ] || fail "SIG$sig: exit $got, expected $want"
+  grep -q "interrupted" "$work/sig.log" || fail "SIG$sig: no interrupted message"
+  [ "$(count_temps "$dir")" -eq 0 ] || fail "SIG$sig: temporary files left"
+  n="$(count_files "$dir" '*.exr')"
+  [ "$n" -ge 2 ] && [ "$n" -lt 240 ] || fail "SIG$sig: $n frames written"
+done
+
+# SIGKILL mid-sequence: no partial file under a final name; a rerun completes the rest and
+# leaves the finished frames untouched; reading every frame back (the contact sheet) succeeds.
+dir="$work/killed"
+"$kasumi" sequence "$scene" --frames 0-23 -o "$dir/fog.####.exr" --res 64x36 --spp 1 -q &
+pid=$!
+for _ in $(seq 1 400); do
+  [ "$(count_files "$dir" '*.exr')" -ge 3 ] && break
+  sleep 0.02
+done
+kill -9 "$pid"
+wait "$pid" 2>/dev/null
+done_before="$(count_files "$dir" '*.exr')"
+[ "$done_before" -lt 24 ] || fail "SIGKILL came too late to test resuming ($done_before frames)"
+kept="$(mtimes "$dir")"
+expect_exit 0 "$done_before skipped" -- sequence "$scene" --frames 0-23 -o "$dir/fog.####.exr" \
+  --res 64x36 --spp 1
+[ "$(count_files "$dir" 'fog.00[0-2][0-9].exr')" -eq 24 ] || fail "the rerun did not complete"
+[ "$kept" = "$(mtimes "$dir" | head -n "$done_before")" ] || fail "the rerun rewrote finished frames"
+expect_exit 0 "24 frames, 0 missing" -- sequence "$scene" --frames 0-23 -o "$dir/fog.####.exr" \
+  --contact-sheet-only --contact-sheet "$work/killed_sheet.png"
+[ -s "$work/killed_sheet.png" ] || fail "no contact sheet from the resumed frames"
+
+# Slurm scripts, run by hand: an array task per frame and per chunk, idempotent reruns, the
+# contact sheet job, and the submitter's dependency wiring (sbatch replaced by a stub).
+slurm="$src/scripts/slurm"
+export KASUMI="$kasumi" SCENE="$scene" FRAMES=0-23 OUTPUT="$work/farm/fog.####.exr"
+export KASUMI_ARGS="--res 32x18 --spp 1 -q"
+SLURM_ARRAY_TASK_ID=3 bash "$slurm/sequence.sbatch" || fail "array task 3 failed"
+[ -s "$work/farm/fog.0003.exr" ] || fail "array task 3 wrote no frame 3"
+[ "$(count_files "$work/farm" '*.exr')" -eq 1 ] || fail "array task 3 wrote other frames"
+before="$(mtimes "$work/farm")"
+SLURM_ARRAY_TASK_ID=3 bash "$slurm/sequence.sbatch" || fail "rerun of task 3 failed"
+[ "$before" = "$(mtimes "$work/farm")" ] || fail "rerun of task 3 was not idempotent"
+SLURM_ARRAY_TASK_ID=30 bash "$slurm/sequence.sbatch" 2>/dev/null && fail "task 30 of 0-23 succeeded"
+FRAMES_PER_TASK=5 SLURM_ARRAY_TASK_ID=4 bash "$slurm/sequence.sbatch" || fail "chunk 4 failed"
+[ "$(count_files "$work/farm" 'fog.002[0-3].exr')" -eq 4 ] || fail "chunk 4 is not frames 20-23"
+bash "$slurm/contact_sheet.sbatch" 2>/dev/null || fail "contact sheet job failed"
+[ -s "$work/farm/fog.contact_sheet.png" ] || fail "contact sheet job wrote no sheet"
+cat >"$work/sbatch" <<'STUB'
+#!/usr/bin/env bash
+echo "$*" >>"$SBATCH_LOG"
+echo "$((1000 + $(wc -l <"$SBATCH_LOG")))"
+STUB
+chmod +x "$work/sbatch"
+SBATCH="$work/sbatch" SBATCH_LOG="$work/sbatch.log" MAX_PARALLEL=8 \
+  bash "$slurm/submit_sequence.sh" "$scene" 0-239 "$work/farm/fog.####.exr" -- --spp 4 \
+  >"$work/submit.out" || fail "submit_sequence.sh failed"
+grep -q -- "--array=0-239:1%8 .*sequence.sbatch" "$work/sbatch.log" || fail "array job: $(cat "$work/sbatch.log")"
+grep -q -- "--dependency=afterok:1001 .*contact_sheet.sbatch" "$work/sbatch.log" ||
+  fail "contact sheet job does not depend on the array: $(cat "$work/sbatch.log")"
+grep -q "job 1001.*job 1002" "$work/submit.out" || fail "submitter output: $(cat "$work/submit.out")"
+: >"$work/sbatch.log"
+FRAMES_PER_TASK=10 SBATCH="$work/sbatch" SBATCH_LOG="$work/sbatch.log" \
+  bash "$slurm/submit_sequence.sh" "$scene" 0-239 "$work/farm/fog.####.exr" >/dev/null
+grep -q -- "--array=0-23 " "$work/sbatch.log" || fail "chunked array: $(cat "$work/sbatch.log")"
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures sequence CLI check(s) failed"
+  exit 1
+fi
+echo "all sequence CLI checks passed"
