@@ -9,7 +9,9 @@
 #
 # Usage: bench/shadow_study.sh [BUILD_DIR]   (default build/release; needs targets kasumi and
 #        shadow_compare).  Environment: RUNS (default 3), THREADS (default 2), OUT (scratch dir),
-#        RESOLUTIONS (default "256 512 1024 2048 4096"), MAX_AREA_RES (default 1024).
+#        RESOLUTIONS (default "256 512 1024 2048 4096"), MAX_AREA_RES (default 1024),
+#        SCENES (default "shadow_maps soft_shadows shadow_volumes"), EXTRA (more render
+#        arguments, e.g. "--res 320x200 --spp 1" on a busy machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build/release}
@@ -20,6 +22,8 @@ THREADS=${THREADS:-2}
 OUT=${OUT:-$(mktemp -d /tmp/kasumi_shadow_study.XXXXXX)}
 RESOLUTIONS=${RESOLUTIONS:-"256 512 1024 2048 4096"}
 MAX_AREA_RES=${MAX_AREA_RES:-1024}
+SCENES=${SCENES:-"shadow_maps soft_shadows shadow_volumes"}
+read -r -a EXTRA_ARGS <<< "${EXTRA:-}"
 mkdir -p "$OUT"
 
 # render NAME SCENE ARGS...: RUNS renders to $OUT/NAME.exr; prints the median wall time (s).
@@ -30,7 +34,7 @@ render() {
     for ((run = 0; run < RUNS; ++run)); do
         local start end
         start=$(date +%s.%N)
-        "$KASUMI" render "$scene" -o "$OUT/$name.exr" --threads "$THREADS" -q "$@"
+        "$KASUMI" render "$scene" -o "$OUT/$name.exr" --threads "$THREADS" -q "${EXTRA_ARGS[@]}" "$@"
         end=$(date +%s.%N)
         times+=("$(echo "$end - $start" | bc -l)")
     done
@@ -66,9 +70,15 @@ study() {
 
 echo "| scene | shadows | pixels differing (> 1%) | RMSE (cd/m²) | time (s, median of $RUNS) |"
 echo "|---|---|---|---|---|"
-study shadow_maps data/scenes/shadow_maps.json 3 4096
-study soft_shadows data/scenes/soft_shadows.json 2 "$MAX_AREA_RES"
-t_ray=$(render volumes_ray data/scenes/shadow_volumes.json --set /lights/0/shadows=ray)
-echo "| shadow_volumes | ray-traced | 0 | 0 | $t_ray |"
-t_vol=$(render volumes_sv data/scenes/shadow_volumes.json)
-echo "| shadow_volumes | shadow-volume | $(compare volumes_ray volumes_sv) | $t_vol |"
+for scene in $SCENES; do
+    case $scene in
+    shadow_maps) study shadow_maps data/scenes/shadow_maps.json 3 4096 ;;
+    soft_shadows) study soft_shadows data/scenes/soft_shadows.json 2 "$MAX_AREA_RES" ;;
+    shadow_volumes)
+        t_ray=$(render volumes_ray data/scenes/shadow_volumes.json --set /lights/0/shadows=ray)
+        echo "| shadow_volumes | ray-traced | 0 | 0 | $t_ray |"
+        t_vol=$(render volumes_sv data/scenes/shadow_volumes.json)
+        echo "| shadow_volumes | shadow-volume | $(compare volumes_ray volumes_sv) | $t_vol |"
+        ;;
+    esac
+done
