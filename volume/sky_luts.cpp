@@ -180,6 +180,28 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
     const double mu = glm::dot(d, sky.sun_direction);
     const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
     Bands tau{}, ts, ms;
+    if (t_end - t_enter < kShortSegmentM && !(ground && t_max >= t_exit)) {
+        // Short segment (aerial perspective over a scene): coefficients and light taken at its
+        // middle, integrated in closed form as a homogeneous stretch,
+        // L = S (1 - exp(-sigma_t L)) / sigma_t. Over 1 km the altitude changes by at most
+        // 1 km and the relative error is O((1 km / H)^2) for scale height H.
+        const double length = t_end - t_enter;
+        const DVec3 x = p + (t_enter + 0.5 * length) * d;
+        const DVec3 up_vec = x - a.center();
+        const double r = glm::length(up_vec);
+        const AtmosphereCoefficients c = atmosphere_coefficients(a, r - m_rg);
+        sun_transmittance(sky, x, ts);
+        multiple_scattering(r, glm::dot(up_vec / r, sky.sun_direction), ms);
+        for (int i = 0; i < n; ++i) {
+            const double tau_i = c.sigma_t[i] * length;
+            // (1 - e^-tau) / sigma_t, written with expm1 and its limit `length` as tau -> 0.
+            const double path = tau_i > 1e-12 ? -std::expm1(-tau_i) / c.sigma_t[i] : length;
+            radiance[i] = path * ((c.sigma_s_rayleigh[i] * p_r + c.sigma_s_mie[i] * p_m) * ts[i] +
+                                  (c.sigma_s_rayleigh[i] + c.sigma_s_mie[i]) * ms[i]);
+            transmittance_out[i] = std::exp(-tau_i);
+        }
+        return;
+    }
     for_each_sky_node(a, p, d, t_enter, t_end, steps, [&](double t, double dt) {
         const DVec3 x = p + t * d;
         const DVec3 up_vec = x - a.center();

@@ -12,6 +12,7 @@
 /// solar irradiance (radiance 1/sr).
 #include "volume/sky_scene.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace kasumi {
@@ -39,8 +40,14 @@ class SkyLuts {
     void march(const SkyScene& sky, const DVec3& p, const DVec3& d, double t_max, int steps,
                Bands& radiance, Bands& transmittance) const;
 
+    /// Drops the multiple-scattering table (single scattering only), for measurements; call
+    /// before build_sky_view.
+    void disable_multiple_scattering() { std::fill(m_multiple.begin(), m_multiple.end(), 0.0f); }
+
+    /// Segments shorter than this (metres) are integrated in closed form from one node.
+    static constexpr double kShortSegmentM = 1000.0;
     static constexpr int kTransmittanceW = 256, kTransmittanceH = 64;
-    static constexpr int kMultipleW = 32, kMultipleH = 32;
+    static constexpr int kMultipleW = 128, kMultipleH = 32;
     static constexpr int kSkyViewW = 192, kSkyViewH = 108;
 
   private:
