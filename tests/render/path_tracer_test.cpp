@@ -80,7 +80,8 @@ TEST(PhongSamplerTest, DirectionalAlbedoIsAtMostKdPlusKs) {
                 sum += s->f.g * glm::dot(n, s->wi) / s->pdf;
         }
         EXPECT_LE(sum / count, 1.0 + 0.01) << cos_view;
-        EXPECT_GE(sum / count, 0.6 - 0.01) << cos_view;  // at least the diffuse part... almost
+        // The diffuse part alone (kd = 0.6) is reflected whatever the view.
+        EXPECT_GE(sum / count, 0.6 - 0.01) << cos_view;
     }
 }
 
