@@ -10,6 +10,7 @@
 #include "volume/transmittance.h"
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -108,6 +109,8 @@ void add_render_command(CLI::App& root) {
             scene_options.sets.push_back("/film/height=" + std::to_string(h));
         }
         // Overrides need their parent objects; create film/render when the scene omits them.
+        StageTimes times;
+        const auto load_start = std::chrono::steady_clock::now();
         SceneDesc desc = [&] {
             std::vector<Override> overrides;
             for (const std::string& s : scene_options.sets)
@@ -123,6 +126,7 @@ void add_render_command(CLI::App& root) {
                                     scene_options.scene_path);
             return parse_scene(doc, scene_options.scene_path);
         }();
+        times.load_s = seconds_since(load_start);
 
         OutputPaths paths;
         const std::string stem = std::filesystem::path(desc.file).stem().string();
@@ -134,7 +138,9 @@ void add_render_command(CLI::App& root) {
                     : options->preview;
         }
 
+        const auto build_start = std::chrono::steady_clock::now();
         const SceneRuntime runtime(std::move(desc));
+        times.build_s = seconds_since(build_start);
         if (scene_options.verbose)
             std::fprintf(stderr, "plan:\n%s", plan_to_text(runtime.plan()).c_str());
         std::signal(SIGINT, on_signal);
@@ -148,9 +154,12 @@ void add_render_command(CLI::App& root) {
         std::signal(SIGINT, SIG_DFL);
         std::signal(SIGTERM, SIG_DFL);
 
-        write_render_outputs(runtime, result, paths);
+        times.render_s = result.seconds;
+        const auto write_start = std::chrono::steady_clock::now();
+        write_render_outputs(runtime, result, paths, times);
+        times.write_s = seconds_since(write_start);
         if (scene_options.verbose)
-            std::fputs(format_stats(runtime, result).c_str(), stderr);
+            std::fputs(format_stats(runtime, result, times).c_str(), stderr);
         if (!scene_options.quiet) {
             std::fprintf(stderr, "wrote %s%s%s (%.2f s)\n", paths.exr.c_str(),
                          paths.preview.empty() ? "" : " and ", paths.preview.c_str(),

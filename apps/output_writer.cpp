@@ -26,7 +26,7 @@ void make_parent_dirs(const std::string& path) {
 }  // namespace
 
 void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
-                          const OutputPaths& paths) {
+                          const OutputPaths& paths, const StageTimes& times) {
     const SceneDesc& desc = scene.desc();
     Image image = result.film.to_image();
     const RenderCounters& c = result.counters;
@@ -52,6 +52,8 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
          std::to_string(render_rates(c, result.seconds, result.threads)
                             .density_lookups_per_s_per_core)},
     };
+    for (auto& kv : stage_metadata(times, scene.plan()))
+        image.metadata.push_back(std::move(kv));
     make_parent_dirs(paths.exr);
     write_exr(image, paths.exr);
     if (!paths.preview.empty()) {
@@ -64,11 +66,14 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
     }
 }
 
-std::string format_stats(const SceneRuntime& scene, const RenderResult& result) {
+std::string format_stats(const SceneRuntime& scene, const RenderResult& result,
+                         const StageTimes& times) {
     const RenderCounters& c = result.counters;
     std::ostringstream out;
     out << "plan:\n" << plan_to_text(scene.plan());
     out << "stats:\n";
+    out << format_stage_times(times);
+    out << "  skipped stages      " << skipped_stage_names(scene.plan()) << "\n";
     out << "  time                " << result.seconds << " s\n";
     out << "  camera rays         " << c.camera_rays << "\n";
     out << "  surface hits        " << c.surface_hits << "\n";

@@ -71,8 +71,11 @@ CONFIGS = [
     ("residual-ratio", {"integrator": "single", "estimator": "residual-ratio"}, True),
     ("residual-ratio + light cache",
      {"integrator": "single", "estimator": "residual-ratio", "light_cache": True}, False),
-    ("march 1 voxel + light cache",
-     {"integrator": "single", "estimator": "march", "step_voxels": 1.0, "light_cache": True},
+    ("march 2 voxels + light cache",
+     {"integrator": "single", "estimator": "march", "step_voxels": 2.0, "light_cache": True},
+     False),
+    ("march 4 voxels + light cache",
+     {"integrator": "single", "estimator": "march", "step_voxels": 4.0, "light_cache": True},
      False),
 ]
 
@@ -134,6 +137,9 @@ def main():
     ap.add_argument("--threads", type=int, default=1, help="threads for the timed runs")
     ap.add_argument("--ref-spp", type=int, default=512, help="reference spp (two halves)")
     ap.add_argument("--max-spp", type=int, default=256, help="end of each spp ladder")
+    ap.add_argument("--configs", default="",
+                    help="comma-separated indices into CONFIGS to run (default: all; the "
+                         "reference always uses CONFIGS[0])")
     ap.add_argument("--vdb-step", default="1,3,0.005",
                     help="vdb_render step,shadowstep,cutoff (its defaults: 1,3,0.005)")
     ap.add_argument("--out", default=os.path.join(ROOT, "build", "vdb_bench"))
@@ -159,13 +165,16 @@ def main():
 
         configs = [(name, scene_file("c%d" % i, volume), unbiased)
                    for i, (name, volume, unbiased) in enumerate(CONFIGS)]
+        ref_scene = configs[0][1]
+        if args.configs:
+            configs = [configs[int(i)] for i in args.configs.split(",")]
         # Reference: the unbiased configuration, two independent halves, all threads.
         half = max(args.ref_spp // 2, 1)
         refs = []
         for k, seed in enumerate((1001, 2002)):
             path = os.path.join(args.out, "ref_%d_%c.exr" % (res, "ab"[k]))
             if not os.path.exists(path):
-                t, _, _ = render_kasumi(args, configs[0][1], path, half, seed, 0)
+                t, _, _ = render_kasumi(args, ref_scene, path, half, seed, 0)
                 print("res %d: reference half %d (%d spp) in %.1f s" % (res, k, half, t))
             refs.append(path)
 

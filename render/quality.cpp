@@ -30,10 +30,10 @@ namespace {
 //   accepts (a policy; the cloud-scattering study measured single scattering 22% darker than
 //   multiple on cloud.json).
 constexpr QualityPreset kTable[] = {
-    {QualityLevel::Draft, 4, 1.6f, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008},
-    {QualityLevel::Default, 16, 1.6f, "ratio", 4, 0.1, 0.00134, 0.0358, 0.0073},
-    {QualityLevel::Final, 64, 0.8f, "ratio", 4, 0.02, 0.00023, 0.009, 0.0018},
-    {QualityLevel::Reference, 256, 0.2f, "ratio", 16, 0.0, 8.9e-5, 0.0028, 0.00023},
+    {QualityLevel::Draft, 4, 1.6, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008},
+    {QualityLevel::Default, 16, 1.6, "ratio", 4, 0.1, 0.00134, 0.0358, 0.0073},
+    {QualityLevel::Final, 64, 0.8, "ratio", 4, 0.02, 0.00023, 0.009, 0.0018},
+    {QualityLevel::Reference, 256, 0.2, "ratio", 16, 0.0, 8.9e-5, 0.0028, 0.00023},
 };
 
 bool is_extended_light(const Json& light) {
@@ -207,12 +207,13 @@ ScatteringBound scattering_bound(const std::vector<Medium>& media) {
 }
 
 std::string scattering_bound_text(const ScatteringBound& b) {
-    const std::string left_out = std::isinf(b.bound) ? "an unbounded amount"
-                                 : b.bound >= 1.0    ? "at most " + g3(b.bound) + " times"
-                                                     : "at most " + g3(100.0 * b.bound) + "%";
+    const std::string left_out =
+        std::isinf(b.bound) ? "an unbounded amount of the single-scattered light"
+        : b.bound >= 1.0    ? "at most " + g3(b.bound) + " times the single-scattered light"
+                            : "at most " + g3(100.0 * b.bound) + "% of the single-scattered light";
     return "albedo " + g3(b.albedo) + ", optical thickness " + g3(b.optical_depth) +
            " (mean chord): single scattering leaves out " + left_out +
-           " of the single-scattered light (bound omega p / (1 - omega p), p = 1 - exp(-tau))";
+           " (bound omega p / (1 - omega p), p = 1 - exp(-tau))";
 }
 
 void choose_integrator(const Json& doc, const std::vector<Medium>& media,

@@ -24,7 +24,7 @@ const char* quality_name(QualityLevel level);
 struct QualityPreset {
     QualityLevel level;
     int spp;                     ///< film.spp
-    float fog_step_m;            ///< render.volume.step_m, with homogeneous media
+    double fog_step_m;           ///< render.volume.step_m, with homogeneous media
     const char* grid_estimator;  ///< render.volume.estimator, with VDB media
     int light_samples;           ///< lights/N/samples of line, polygon and sphere lights
     /// Single scattering is chosen when its bound on the light left out is at most this.

@@ -10,7 +10,14 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
     if (grid.empty())
         return;
     m_lower = grid.lower();
-    m_dims = IVec3(grid.upper() - grid.lower()) + IVec3(1);
+    // Lattice spacing in voxels: 1, or 2, 4, ... so the lattice stays within kMaxPoints (the
+    // build is one pass of three lookups per point; memory 4 bytes per point).
+    const Vec3 extent = grid.upper() - grid.lower();
+    m_cell = 1.0f;
+    while ((extent.x / m_cell + 1.0f) * (extent.y / m_cell + 1.0f) * (extent.z / m_cell + 1.0f) >
+           static_cast<float>(kMaxPoints))
+        m_cell *= 2.0f;
+    m_dims = IVec3(glm::ceil(extent / m_cell)) + IVec3(1);
     m_d.assign(static_cast<size_t>(m_dims.x) * m_dims.y * m_dims.z, 0.0f);
 
     // One lattice step toward the light along the major axis a of the index-space direction.
@@ -20,10 +27,10 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
         if (std::abs(d_index[c]) > std::abs(d_index[a]))
             a = c;
     const int b = (a + 1) % 3, c = (a + 2) % 3;
-    const Vec3 step = d_index / std::abs(d_index[a]);    // index units, |step[a]| = 1
-    const float length_m = 1.0f / std::abs(d_index[a]);  // metres per step
-    const int toward = step[a] > 0.0f ? 1 : -1;          // slice index change toward light
-    const int first = toward > 0 ? m_dims[a] - 1 : 0;    // slice nearest the light
+    const Vec3 step = d_index * (m_cell / std::abs(d_index[a]));  // index units, |step[a]| = cell
+    const float length_m = m_cell / std::abs(d_index[a]);         // metres per step
+    const int toward = step[a] > 0.0f ? 1 : -1;                   // slice index change toward light
+    const int first = toward > 0 ? m_dims[a] - 1 : 0;             // slice nearest the light
 
     auto at = [&](IVec3 p) -> float& { return m_d[index(p.x, p.y, p.z)]; };
     // D on slice `slice` at fractional (u, v) along axes b, c; 0 outside the lattice (the ray
@@ -53,14 +60,14 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
         p[a] = slice;
         for (p[c] = 0; p[c] < m_dims[c]; ++p[c]) {
             for (p[b] = 0; p[b] < m_dims[b]; ++p[b]) {
-                const Vec3 x = m_lower + Vec3(p);
+                const Vec3 x = m_lower + m_cell * Vec3(p);
                 const Vec3 q = x + step;
                 const float rho_p = grid.density(x);
                 const float rho_m = grid.density(x + 0.5f * step);
                 const float rho_q = grid.density(q);
                 const float upstream_d =
-                    inside ? bilinear(upstream, static_cast<float>(p[b]) + step[b],
-                                      static_cast<float>(p[c]) + step[c])
+                    inside ? bilinear(upstream, static_cast<float>(p[b]) + step[b] / m_cell,
+                                      static_cast<float>(p[c]) + step[c] / m_cell)
                            : 0.0f;
                 at(p) = upstream_d + length_m * (rho_p + 4.0f * rho_m + rho_q) * (1.0f / 6.0f);
             }
@@ -71,7 +78,7 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
 std::optional<Rgb> LightTransmittanceCache::transmittance(const Vec3& p_world) const {
     if (m_d.empty())
         return Rgb(1.0f);
-    const Vec3 u = Vec3(m_world_to_index * Vec4(p_world, 1.0f)) - m_lower;
+    const Vec3 u = (Vec3(m_world_to_index * Vec4(p_world, 1.0f)) - m_lower) / m_cell;
     const Vec3 f = glm::floor(u);
     if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < m_dims.x - 1 && f.y < m_dims.y - 1 &&
           f.z < m_dims.z - 1))

@@ -31,6 +31,10 @@ class LightTransmittanceCache {
     /// Density integral toward the light (density · metres) at lattice point (i, j, k).
     float density_integral(int i, int j, int k) const { return m_d[index(i, j, k)]; }
     IVec3 dims() const { return m_dims; }
+    /// Lattice spacing in voxels: 1, doubled until the lattice has at most kMaxPoints points
+    /// (2 for a 256³ cloud, 4 for 512³): the build then costs well under one image's render.
+    float cell() const { return m_cell; }
+    static constexpr size_t kMaxPoints = size_t(1) << 19;
 
   private:
     size_t index(int i, int j, int k) const {
@@ -41,6 +45,7 @@ class LightTransmittanceCache {
 
     Mat4 m_world_to_index{1.0f};
     Vec3 m_lower{0.0f};  ///< index-space position of lattice point (0, 0, 0)
+    float m_cell = 1.0f;
     IVec3 m_dims{0};
     Rgb m_sigma_t_per_density{0.0f};
     std::vector<float> m_d;

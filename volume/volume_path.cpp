@@ -8,8 +8,9 @@ namespace kasumi {
 
 namespace {
 
-/// The marched single scattering stops once every channel's camera transmittance is below this.
-constexpr float kTailTransmittance = 1e-6f;
+/// The marched single scattering stops once every channel's camera transmittance is below this:
+/// the light left out is at most this fraction of what the rest of the ray could add.
+constexpr float kTailTransmittance = 1e-4f;
 /// Paths play Russian roulette from this many scattering events on.
 constexpr int kRouletteDepth = 3;
 

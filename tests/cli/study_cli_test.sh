@@ -2,7 +2,7 @@
 # End-to-end checks of `kasumi study`: a 2x2 study at a tiny resolution writes study.csv (one
 # row per combination, the Pareto front marked), study.md and study.svg; bad arguments are usage
 # errors (exit 2) and bad values input errors naming the file and JSON pointer (exit 3), with no
-# output written.
+# output written. Also the plan's render.quality line and the per-stage render statistics.
 # usage: study_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
 kasumi="$1"
@@ -74,6 +74,23 @@ expect_exit 2 "" -- study "$work/fog.json" --vary spp=1,2
 expect_exit 3 "fog.json: /render/volume/step_m" -- study "$work/fog.json" \
   --vary /render/volume/step_m=0.1,-1 --res 4x4 -o "$work/s3"
 [ -e "$work/s3" ] && fail "a failed study created its output directory"
+
+# render.quality: the plan prints the level's choice; an unknown level is a located input error.
+expect_exit 0 "" -- plan "$work/fog.json" --set /render/quality=draft
+grep -q "run   quality: draft: set /render/volume/step_m = 1.6;" "$work/stdout" || fail "plan lacks the quality line"
+grep -q "single scattering chosen by draft" "$work/stdout" || fail "plan lacks the integrator choice"
+expect_exit 3 "fog.json: /render/quality" -- plan "$work/fog.json" --set /render/quality=ultra
+
+# Render statistics per stage: -v prints each stage's time and the skipped stages; the EXR
+# carries the times and the plan (string attributes, readable in the file's header).
+expect_exit 0 "time render" -- render "$work/fog.json" --res 6x4 --spp 1 -o "$work/v.exr" \
+  --no-preview -v
+for key in "time load" "time build" "time write" "skipped stages"; do
+  grep -q "$key" "$work/stderr" || fail "render -v lacks \"$key\""
+done
+for key in kasumi/time/load_s kasumi/time/build_s kasumi/time/render_s kasumi/plan/skipped; do
+  grep -aq "$key" "$work/v.exr" || fail "EXR metadata lacks $key"
+done
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures failure(s)"

@@ -1,0 +1,37 @@
+#pragma once
+/// Wall time of each stage of one render (`kasumi render -v` and the EXR metadata), and the
+/// plan's skipped stages in one line.
+#include "render/plan.h"
+
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace kasumi {
+
+/// Seconds per stage; negative: the stage did not run (or was not timed).
+struct StageTimes {
+    double load_s = -1.0;    ///< read and validate the scene: JSON, meshes, VDB grids to bricks
+    double build_s = -1.0;   ///< the runtime: Embree BVH, media set, shadow maps, GI, sky tables
+    double render_s = -1.0;  ///< tiles: camera rays through every stage
+    double write_s = -1.0;   ///< EXR and preview PNG
+};
+
+/// Seconds elapsed on the steady clock since `start`.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Lines "  load   0.012 s" for -v, one per timed stage.
+std::string format_stage_times(const StageTimes& times);
+
+/// EXR metadata: time/<stage>_s for every timed stage, plan/ran and plan/skipped (stage names,
+/// comma-separated).
+std::vector<std::pair<std::string, std::string>> stage_metadata(const StageTimes& times,
+                                                                const Plan& plan);
+
+/// Names of the plan's stages that did not run, comma-separated ("" if none).
+std::string skipped_stage_names(const Plan& plan);
+
+}  // namespace kasumi
