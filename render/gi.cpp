@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "render/path_tracer.h"
+#include "render/photon_gi.h"
 #include "render/radiosity_gi.h"
 #include "render/scene_runtime.h"
 #include "render/whitted.h"
@@ -23,7 +24,7 @@ std::shared_ptr<const GiMethod> make_gi_method(const SceneRuntime& scene) {
         case GiMode::Radiosity:
             return std::make_shared<RadiosityGi>(scene);
         case GiMode::Photons:
-            break;
+            return std::make_shared<PhotonGi>(scene);
     }
     throw_input_error(desc.file + ": render.gi = " + gi_mode_name(desc.render.gi) +
                       ": not available in this build");

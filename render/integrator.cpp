@@ -1,6 +1,7 @@
 #include "render/integrator.h"
 
 #include "render/gi.h"
+#include "render/photon_gi.h"
 #include "render/whitted.h"
 #include "surface/emitter_hit.h"
 
@@ -137,7 +138,7 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
     ++counters.volume_rays;
     VolumeCounters vc;
     const RenderPathEnvironment environment(scene, counters);
-    const VolumeResult v =
+    VolumeResult v =
         integrate_media(scene.media(), scene.desc().lights, scene.occlusion(), &environment,
                         segment, scene.desc().render.volume, scene.plan().in_scattering, rng, vc,
                         !(segment.t_max < kInfinity) && is_black(scene.desc().background) &&
@@ -148,6 +149,9 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
     counters.transmittance_rays += vc.transmittance_estimates;
     counters.free_flights += vc.free_flights;
     counters.scattering_events += vc.scattering_events;
+    // Photon mapping adds the light scattered more than once from its volume map.
+    if (const auto* photons = dynamic_cast<const PhotonGi*>(scene.gi()))
+        v.radiance += photons->volume_radiance(scene, segment, rng);
     return v;
 }
 

@@ -1,6 +1,7 @@
 #include "render/photon_render.h"
 
 #include "core/sampling.h"
+#include "render/gi.h"
 #include "render/integrator.h"
 #include "render/photon_estimate.h"
 #include "surface/fresnel.h"
@@ -79,8 +80,13 @@ Rgb gather_ray(const PhotonRenderContext& c, Ray ray, Pcg32& rng) {
             return weight * scene.desc().background;
         const Vec3 wo = -ray.direction;
         const Material& material = scene.desc().materials[hit->material];
+        // Emissive surfaces are lit directly only through gathering (their photons are in
+        // the maps, but shadow rays go to lights alone).
+        const Rgb emitted = weight * emitted_radiance(material, *hit, wo);
         if (const auto* phong = std::get_if<PhongMaterial>(&material))
-            return weight * map_radiance(c, c.maps.global, *phong, *hit, wo);
+            return emitted + weight * map_radiance(c, c.maps.global, *phong, *hit, wo);
+        if (!is_black(emitted))
+            return emitted;  // a specular emitter: its own light dominates; the rest is cut
         Vec3 next;
         if (const auto* mirror = std::get_if<MirrorMaterial>(&material)) {
             weight *= mirror->kr;
@@ -134,69 +140,21 @@ Rgb final_gather(const PhotonRenderContext& c, const PhongMaterial& m, const Sur
     return sum / static_cast<float>(n);
 }
 
-Rgb shade_phong(const PhotonRenderContext& c, const PhongMaterial& m, const SurfaceHit& hit,
-                const Vec3& wo, Pcg32& rng, RenderCounters& counters) {
-    Rgb radiance = shade_surface(c.scene, hit, wo, rng, counters);
-    radiance += map_radiance(c, c.maps.caustic, m, hit, wo);
-    if (c.settings.final_gather_samples > 0)
-        radiance += final_gather(c, m, hit, wo, rng);
-    return radiance;
-}
-
-Rgb shade(const PhotonRenderContext& c, const Ray& ray, const SurfaceHit& hit, Pcg32& rng,
-          RenderCounters& counters, int depth, float weight) {
-    const Vec3 wo = -ray.direction;
-    const Material& material = c.scene.desc().materials[hit.material];
-    if (const auto* phong = std::get_if<PhongMaterial>(&material))
-        return shade_phong(c, *phong, hit, wo, rng, counters);
-    const WhittedSettings& whitted = c.scene.desc().render.whitted;
-    auto branch = [&](const Vec3& d, float w) {
-        if (depth >= whitted.max_depth || !(w >= whitted.min_weight) || w <= 0.0f)
-            return Rgb(0.0f);
-        return photon_ray_radiance(c, Ray{offset_ray_origin(hit, d), d, 0.0f, kInfinity}, rng,
-                                   counters, depth + 1, w);
-    };
-    if (const auto* mirror = std::get_if<MirrorMaterial>(&material)) {
-        const Vec3 wr = glm::normalize(reflect(wo, hit.shading_normal));
-        return mirror->kr * branch(wr, weight * max_component(mirror->kr));
-    }
-    const auto& glass = std::get<DielectricMaterial>(material);
-    const float cos_o = glm::dot(hit.shading_normal, wo);
-    const bool outside = cos_o >= 0.0f;
-    const Vec3 n = outside ? hit.shading_normal : -hit.shading_normal;
-    const float eta = outside ? glass.ior : 1.0f / glass.ior;
-    const float reflectance = fresnel_dielectric(cos_o, glass.ior);
-    Rgb radiance(0.0f);
-    if (reflectance > 0.0f)
-        radiance += reflectance * branch(glm::normalize(reflect(wo, n)), weight * reflectance);
-    if (reflectance < 1.0f) {
-        if (const std::optional<Vec3> wt = refract(wo, n, eta)) {
-            const Rgb t = (1.0f - reflectance) * glass.tint;
-            radiance += t / (eta * eta) * branch(*wt, weight * max_component(t));
-        }
-    }
-    return radiance;
-}
-
-/// The volume stage of the photon renderer over one segment: single scattering by shadow rays
-/// (the scene's estimator, integrator forced to single) plus the volume map.
-VolumeResult photon_volume(const PhotonRenderContext& c, const Ray& segment, Pcg32& rng,
-                           RenderCounters& counters) {
-    const SceneRuntime& scene = c.scene;
-    ++counters.volume_rays;
-    VolumeSettings single = scene.desc().render.volume;
-    single.integrator = VolumeIntegrator::Single;
-    VolumeCounters vc;
-    VolumeResult v = integrate_media(scene.media(), scene.desc().lights, scene.occlusion(), nullptr,
-                                     segment, single, scene.plan().in_scattering, rng, vc);
-    counters.volume_steps += vc.steps;
-    counters.volume_shadow_rays += vc.shadow_rays;
-    if (scene.plan().in_scattering && !c.maps.volume.empty())
-        v.radiance += volume_map_radiance(c, segment, rng);
-    return v;
-}
-
 }  // namespace
+
+Rgb photon_phong_radiance(const PhotonRenderContext& c, const SurfaceHit& hit, const Vec3& wo,
+                          Pcg32& rng, RenderCounters& counters) {
+    const auto* m = std::get_if<PhongMaterial>(&c.scene.desc().materials[hit.material]);
+    if (m == nullptr)
+        return Rgb(0.0f);
+    Rgb radiance = shade_surface(c.scene, hit, wo, rng, counters);
+    radiance += map_radiance(c, c.maps.caustic, *m, hit, wo);
+    if (c.settings.final_gather_samples > 0)
+        radiance += final_gather(c, *m, hit, wo, rng);
+    else
+        radiance += map_radiance(c, c.maps.global, *m, hit, wo);
+    return radiance;
+}
 
 Rgb global_map_radiance(const PhotonRenderContext& context, const SurfaceHit& hit, const Vec3& wo) {
     const auto* phong = std::get_if<PhongMaterial>(&context.scene.desc().materials[hit.material]);
@@ -236,52 +194,6 @@ Rgb volume_map_radiance(const PhotonRenderContext& c, const Ray& segment, Pcg32&
                    return true;
                });
     return radiance;
-}
-
-Rgb photon_ray_radiance(const PhotonRenderContext& c, const Ray& ray, Pcg32& rng,
-                        RenderCounters& counters, int depth, float weight) {
-    Rgb surface = c.scene.desc().background;
-    float t_end = ray.t_max;
-    if (const SurfaceScene* surfaces = c.scene.surfaces()) {
-        if (const auto hit = surfaces->intersect(ray)) {
-            t_end = hit->t;
-            surface = shade(c, ray, *hit, rng, counters, depth, weight);
-        }
-    }
-    if (!c.scene.plan().volume)
-        return surface;
-    Ray segment = ray;
-    segment.t_max = t_end;
-    const VolumeResult v = photon_volume(c, segment, rng, counters);
-    return v.radiance + v.transmittance * surface;
-}
-
-PixelSample trace_photon_camera_ray(const PhotonRenderContext& c, const Ray& ray, Pcg32& rng,
-                                    RenderCounters& counters) {
-    ++counters.camera_rays;
-    PixelSample sample;
-    float t_end = ray.t_max;
-    if (const SurfaceScene* surfaces = c.scene.surfaces()) {
-        if (const auto hit = surfaces->intersect(ray)) {
-            ++counters.surface_hits;
-            sample.hit = true;
-            t_end = hit->t;
-            sample.depth = hit->t * glm::dot(ray.direction, c.scene.camera().forward());
-            sample.albedo = albedo(c.scene.desc().materials[hit->material]);
-            sample.surface = shade(c, ray, *hit, rng, counters, 0, 1.0f);
-        }
-    }
-    if (!sample.hit)
-        sample.surface = c.scene.desc().background;
-    if (c.scene.plan().volume) {
-        Ray segment = ray;
-        segment.t_max = t_end;
-        const VolumeResult v = photon_volume(c, segment, rng, counters);
-        sample.volume = v.radiance;
-        sample.transmittance = v.transmittance;
-    }
-    sample.radiance = sample.volume + sample.transmittance * sample.surface;
-    return sample;
 }
 
 }  // namespace kasumi

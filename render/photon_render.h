@@ -6,7 +6,6 @@
 /// mirrors and glass are followed as in Whitted tracing, and along every ray through media the
 /// light scattered once straight from the lights comes from shadow rays (the volume stage with
 /// single scattering) and the rest from the volume map, ray-marched.
-#include "core/film.h"
 #include "core/rng.h"
 #include "render/photon_settings.h"
 #include "render/photon_tracer.h"
@@ -22,15 +21,12 @@ struct PhotonRenderContext {
     const PhotonSettings& settings;
 };
 
-/// A camera sample: radiance and AOVs as trace_camera_ray returns them. Never throws.
-PixelSample trace_photon_camera_ray(const PhotonRenderContext& context, const Ray& ray, Pcg32& rng,
-                                    RenderCounters& counters);
-
-/// Radiance (cd/m²) arriving at ray.origin along -ray.direction: the first surface's outgoing
-/// radiance behind the media, or the background. `depth` counts specular bounces (limited by
-/// render.whitted.max_depth, as are branch weights by render.whitted.min_weight).
-Rgb photon_ray_radiance(const PhotonRenderContext& context, const Ray& ray, Pcg32& rng,
-                        RenderCounters& counters, int depth = 0, float weight = 1.0f);
+/// Radiance (cd/m²) a Phong surface reflects at `hit` toward wo: direct light by shadow rays
+/// (shade_surface), caustics from the caustic map and indirect light by final gathering
+/// (render.photons.final_gather_samples rays; 0: the global map read directly). Emission is
+/// not included. Never throws.
+Rgb photon_phong_radiance(const PhotonRenderContext& context, const SurfaceHit& hit, const Vec3& wo,
+                          Pcg32& rng, RenderCounters& counters);
 
 /// Reflected radiance at a Phong hit toward wo read from the global map alone (the estimate a
 /// final-gather ray uses), with the map's full Phong BRDF.

@@ -101,10 +101,38 @@ BoundingSphere scene_bounding_sphere(const SceneRuntime& scene) {
     return sphere;
 }
 
-void collect_emissive_surfaces(const SceneRuntime&, std::vector<EmissiveTriangle>& triangles,
+void collect_emissive_surfaces(const SceneRuntime& scene, std::vector<EmissiveTriangle>& triangles,
                                std::vector<EmissiveSphere>& spheres) {
     triangles.clear();
     spheres.clear();
+    const SceneDesc& desc = scene.desc();
+    for (const Shape& shape : desc.shapes) {
+        const Rgb radiance = emission(desc.materials[shape.material]);
+        if (is_black(radiance))
+            continue;
+        auto quad = [&](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+            triangles.push_back({a, b, c, radiance});
+            triangles.push_back({a, c, d, radiance});
+        };
+        if (const auto* sphere = std::get_if<SphereShape>(&shape.geometry)) {
+            spheres.push_back({sphere->center, sphere->radius, radiance});
+        } else if (const auto* q = std::get_if<QuadShape>(&shape.geometry)) {
+            quad(q->vertices[0], q->vertices[1], q->vertices[2], q->vertices[3]);
+        } else if (const auto* box = std::get_if<BoxShape>(&shape.geometry)) {
+            // Six faces wound counter-clockwise seen from outside (outward front normals).
+            const Vec3 lo = box->min, hi = box->max;
+            quad({lo.x, lo.y, lo.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {lo.x, hi.y, lo.z});
+            quad({hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});
+            quad({lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});
+            quad({lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});
+            quad({lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, lo.y, lo.z});
+            quad({lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
+        } else if (const auto* mesh = std::get_if<MeshShape>(&shape.geometry)) {
+            for (const auto& t : mesh->mesh.triangles)
+                triangles.push_back({mesh->mesh.positions[t[0]], mesh->mesh.positions[t[1]],
+                                     mesh->mesh.positions[t[2]], radiance});
+        }
+    }
 }
 
 std::vector<Photon> trace_photons(const SceneRuntime& scene, const PhotonEmitter& emitter,

@@ -4,6 +4,7 @@
 #include "core/camera.h"
 #include "lights/light.h"
 #include "render/gi_settings.h"
+#include "render/photon_settings.h"
 #include "render/quality.h"
 #include "surface/material.h"
 #include "surface/shape.h"
@@ -46,6 +47,7 @@ struct RenderSettings {
     GiMode gi = GiMode::None;  ///< render.gi: global illumination method
     PathSettings path;
     RadiositySettings radiosity;
+    PhotonSettings photons;  ///< render.photons (render/photon_settings.h)
     PreviewDesc preview;
     QualityChoice quality;  ///< render.quality and what it set (render/quality.h)
 };

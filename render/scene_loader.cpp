@@ -128,6 +128,8 @@ RenderSettings parse_render(const JsonNode& node) {
         render.path = parse_path_settings(*v);
     if (auto v = reader.optional("radiosity"))
         render.radiosity = parse_radiosity_settings(*v);
+    if (auto v = reader.optional("photons"))
+        render.photons = parse_photon_settings(*v);
     reader.optional("quality");  // validated and applied by apply_quality (render/quality.h)
     if (auto v = reader.optional("preview")) {
         JsonObjectReader preview(*v);

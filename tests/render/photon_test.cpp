@@ -7,7 +7,7 @@
 #include "render/integrator.h"
 #include "render/photon_emission.h"
 #include "render/photon_estimate.h"
-#include "render/photon_render.h"
+#include "render/photon_gi.h"
 #include "render/photon_tracer.h"
 #include "test_scene.h"
 
@@ -329,28 +329,99 @@ TEST(PhotonDensity, ClosedDiffuseSphereReachesEOverOneMinusRho) {
 TEST(PhotonRender, ClosedDiffuseSphereRadianceByFinalGathering) {
     // Seen from the centre, the wall's radiance is ρ E_total / π = ρ I / (π R² (1 - ρ)): half
     // from the direct light (shadow rays) and half from final gathering on the global map.
-    const auto scene = runtime_from_text(kSphereFurnace);
-    PhotonSettings settings;
-    settings.global_count = 200000;
-    settings.caustic_count = 1000;
-    settings.volume_count = 0;
-    settings.k = 200;
-    settings.max_radius_m = 0.5f;
-    settings.final_gather_samples = 16;
-    const PhotonMaps maps = build_photon_maps(*scene, settings, 1, 0);
-    EXPECT_EQ(maps.caustic.size(), 0u);  // no specular surface: no caustic photons
-    const PhotonRenderContext context{*scene, maps, settings};
+    std::string text = kSphereFurnace;
+    text.insert(text.rfind('}'), R"(, "render": {"gi": "photons", "photons": {
+        "global_count": 200000, "caustic_count": 1000, "volume_count": 0, "k": 200,
+        "max_radius_m": 0.5, "final_gather_samples": 16}})");
+    const auto scene = runtime_from_text(text);
+    const auto* gi = dynamic_cast<const PhotonGi*>(scene->gi());
+    ASSERT_NE(gi, nullptr);
+    EXPECT_EQ(gi->maps().caustic.size(), 0u);      // no specular surface: no caustic photons
+    EXPECT_GT(gi->maps().global.size(), 300000u);  // ~2 stored per photon for ρ = 1/2
     RenderCounters counters;
     double sum = 0.0;
     const int n = 2000;
     for (int i = 0; i < n; ++i) {
         Pcg32 rng(9, static_cast<uint64_t>(i));
         const Vec3 d = sample_uniform_sphere(rng.next_vec2());
-        sum += trace_photon_camera_ray(context, Ray{Vec3(0.0f), d, 0.0f, kInfinity}, rng, counters)
-                   .radiance.g;
+        sum +=
+            trace_camera_ray(*scene, Ray{Vec3(0.0f), d, 0.0f, kInfinity}, rng, counters).radiance.g;
     }
     const double expected = 0.5 * 10.0 / (kPiD * 0.5);
     EXPECT_NEAR(sum / n, expected, 0.03 * expected);
+}
+
+}  // namespace
+}  // namespace kasumi
+
+namespace kasumi {
+namespace {
+
+std::string fog_box(const std::string& integrator, const std::string& render_extra = "") {
+    return R"({
+        "lights": [{"type": "point", "position": [0, 0, 0], "intensity_cd": 100}],
+        "materials": {"black": {"type": "phong", "kd": 0}},
+        "shapes": [{"type": "quad", "material": "black",
+                    "vertices": [[-1, -9, -1], [-1, -9, 1], [1, -9, 1], [1, -9, -1]]}],
+        "media": [{"type": "homogeneous", "bounds": [[-1, -1, -1], [1, 1, 1]],
+                   "sigma_a": 0.3, "sigma_s": 1.5}],
+        "render": {"volume": {"step_m": 0.05, "integrator": ")" +
+           integrator + R"("})" + render_extra + "}}";
+}
+
+struct MeanAndError {
+    double mean = 0.0, stderr_ = 0.0;
+};
+
+template <class Sample>
+MeanAndError estimate(int n, Sample&& sample) {
+    double sum = 0.0, sum2 = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double x = sample(i);
+        sum += x;
+        sum2 += x * x;
+    }
+    const double mean = sum / n;
+    return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1))};
+}
+
+TEST(PhotonVolume, HomogeneousMediumMatchesTheVolumeIntegratorsMultipleScattering) {
+    // A box of fog (albedo 0.83, optical half-width 1.8) around a point light, seen along a ray
+    // passing 0.58 m from the light. Reference: the volume path tracer (single + multiple
+    // scattering, unbiased). Photons: single scattering by shadow rays plus the volume map's
+    // estimate of everything scattered more than once.
+    const Ray ray{Vec3(0.5f, 0.3f, -3.0f), Vec3(0, 0, 1), 0.0f, kInfinity};
+    auto camera = [&](const SceneRuntime& scene) {
+        return estimate(40000, [&](int i) {
+            Pcg32 rng(21, static_cast<uint64_t>(i));
+            RenderCounters counters;
+            return static_cast<double>(trace_camera_ray(scene, ray, rng, counters).radiance.g);
+        });
+    };
+    const MeanAndError multiple = camera(*runtime_from_text(fog_box("multiple")));
+    const MeanAndError single = camera(*runtime_from_text(fog_box("single")));
+
+    const auto scene = runtime_from_text(fog_box("single", R"(, "gi": "photons", "photons": {
+        "global_count": 0, "caustic_count": 0, "volume_count": 400000, "k": 100,
+        "max_radius_m": 0.3})"));
+    const auto* gi = dynamic_cast<const PhotonGi*>(scene->gi());
+    ASSERT_NE(gi, nullptr);
+    ASSERT_GT(gi->maps().volume.size(), 100000u);
+    const MeanAndError photons = estimate(2000, [&](int i) {
+        Pcg32 rng(22, static_cast<uint64_t>(i));
+        RenderCounters counters;
+        return static_cast<double>(trace_camera_ray(*scene, ray, rng, counters).radiance.g);
+    });
+    // Stated error: 4 combined standard errors (false failures ~6e-5 for normal means) plus 3%
+    // for the density estimate's bias (its radius smooths the fluence, O(r²)). The multiple-
+    // scattering part alone is several times this: a map that is missing or off by its σ_s
+    // factor fails.
+    const double tolerance =
+        4.0 * std::hypot(multiple.stderr_, photons.stderr_) + 0.03 * multiple.mean;
+    EXPECT_NEAR(photons.mean, multiple.mean, tolerance)
+        << "single " << single.mean << " ± " << single.stderr_ << ", multiple " << multiple.mean
+        << " ± " << multiple.stderr_ << ", photons " << photons.mean << " ± " << photons.stderr_;
+    EXPECT_GT(multiple.mean - single.mean, 3.0 * tolerance);
 }
 
 }  // namespace
