@@ -2,6 +2,7 @@
 // at the horizon and from space (finite, non-negative, no seam).
 #include "volume/sky_reference.h"
 #include "volume/atmosphere_json.h"
+#include "volume/sky_renderer.h"
 
 #include <gtest/gtest.h>
 
@@ -153,6 +154,34 @@ TEST(ReferenceSky, HigherOrdersAddLightAndConverge) {
     }
     EXPECT_GT(0.5 * (mean[0] + mean[1]), single * 1.05);
     EXPECT_LT(std::abs(mean[0] - mean[1]), 5.0 * std::sqrt(var_of_mean[0] + var_of_mean[1]));
+}
+
+TEST(SunThroughTheAir, PlaneParallelAirMassAtHighSun) {
+    // At 60 deg elevation the curvature of the shell changes the slant path by < 0.1%, so the
+    // sun's transmittance is exp(-tau_zenith / sin(60 deg)) with tau_zenith in closed form.
+    auto sky = std::make_shared<SkyScene>(*make_sky(60.0, 1, true));
+    const Bands t = sun_transmittance(*sky, DVec3(0.0), 400);
+    for (int i = 0; i < 3; ++i) {
+        const double expected = std::exp(-zenith_tau(sky->atmosphere, i) / std::sin(kPiD / 3.0));
+        EXPECT_NEAR(t[i] / expected, 1.0, 1e-3) << "band " << i;
+    }
+}
+
+TEST(SunThroughTheAir, WhiteSunReddensTowardTheHorizon) {
+    // The sun light handed to surfaces: dimmer and redder as the path through the air grows
+    // (a white wall turns orange at sunset). At 2 deg the air mass is ~20 (Kasten & Young
+    // 1989), and the blue-red optical depth difference ~0.23 makes red/blue > 10.
+    double last_luminance = 1e30, last_ratio = 0.0;
+    for (const double elevation : {60.0, 30.0, 10.0, 2.0}) {
+        const auto sky = make_sky(elevation, 1, false);
+        const Light sun = make_sun_light(*sky, true);
+        const Rgb e = std::get<DirectionalLight>(sun.emitter).illuminance;
+        EXPECT_LT(luminance(e), last_luminance) << elevation;
+        EXPECT_GT(e.r / e.b, last_ratio) << elevation;
+        last_luminance = luminance(e);
+        last_ratio = e.r / e.b;
+    }
+    EXPECT_GT(last_ratio, 10.0);
 }
 
 }  // namespace
