@@ -77,6 +77,9 @@ CONFIGS = [
     ("march 4 voxels + light cache",
      {"integrator": "single", "estimator": "march", "step_voxels": 4.0, "light_cache": True},
      False),
+    ("march 8 voxels + light cache",
+     {"integrator": "single", "estimator": "march", "step_voxels": 8.0, "light_cache": True},
+     False),
 ]
 
 
