@@ -426,3 +426,46 @@ TEST(PhotonVolume, HomogeneousMediumMatchesTheVolumeIntegratorsMultipleScatterin
 
 }  // namespace
 }  // namespace kasumi
+
+namespace kasumi {
+namespace {
+
+TEST(PhotonRender, EmissiveFurnaceBoxHasRadianceLeOverOneMinusRho) {
+    // A closed box whose every face emits L_e (inward: the quads wind counter-clockwise seen
+    // from inside) and reflects ρ diffusely: L = L_e + ρ E / π with E = π L everywhere, so
+    // L = L_e / (1 - ρ) = 2 for L_e = 1, ρ = 0.5. Photons come from the emissive faces alone;
+    // the camera sees emission + final gathering (emission of the gathered walls + global map).
+    const auto scene = runtime_from_text(R"({
+        "materials": {"wall": {"type": "phong", "kd": 0.5, "emission_cd_m2": 1}},
+        "shapes": [
+          {"type": "quad", "material": "wall", "vertices": [[-1,-1,1],[1,-1,1],[1,-1,-1],[-1,-1,-1]]},
+          {"type": "quad", "material": "wall", "vertices": [[1,1,-1],[1,1,1],[-1,1,1],[-1,1,-1]]},
+          {"type": "quad", "material": "wall", "vertices": [[-1,1,-1],[-1,1,1],[-1,-1,1],[-1,-1,-1]]},
+          {"type": "quad", "material": "wall", "vertices": [[1,-1,1],[1,1,1],[1,1,-1],[1,-1,-1]]},
+          {"type": "quad", "material": "wall", "vertices": [[1,-1,-1],[1,1,-1],[-1,1,-1],[-1,-1,-1]]},
+          {"type": "quad", "material": "wall", "vertices": [[-1,1,1],[1,1,1],[1,-1,1],[-1,-1,1]]}],
+        "render": {"gi": "photons", "photons": {"global_count": 200000, "caustic_count": 0,
+                   "volume_count": 0, "k": 200, "max_radius_m": 0.3,
+                   "final_gather_samples": 16}}})");
+    const auto* gi = dynamic_cast<const PhotonGi*>(scene->gi());
+    ASSERT_NE(gi, nullptr);
+    // Every photon is stored at each wall it hits: ~1/(1 - ρ) = 2 per emitted photon.
+    EXPECT_NEAR(static_cast<double>(gi->maps().global.size()), 400000.0, 8000.0);
+    RenderCounters counters;
+    double sum = 0.0;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) {
+        Pcg32 rng(31, static_cast<uint64_t>(i));
+        const Vec3 d = sample_uniform_sphere(rng.next_vec2());
+        sum += trace_camera_ray(*scene, Ray{Vec3(0.1f, -0.2f, 0.05f), d, 0.0f, kInfinity}, rng,
+                                counters)
+                   .radiance.g;
+    }
+    // 2000 views × 16 gathers of estimates with relative σ 1/√200 = 7% (correlated through
+    // the map): ~0.5%; edges bias the disc estimate (photons of the neighbouring wall inside
+    // it) by about a percent; 4% bounds both. Without the map the result would read 1.5.
+    EXPECT_NEAR(sum / n, 2.0, 0.08);
+}
+
+}  // namespace
+}  // namespace kasumi
