@@ -4,6 +4,7 @@
 #include "core/color_management.h"
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "render/gi.h"
 
 #include <filesystem>
 #include <sstream>
@@ -82,6 +83,8 @@ std::string format_stats(const SceneRuntime& scene, const RenderResult& result,
     out << "  volume steps        " << c.volume_steps << "\n";
     out << "  volume shadow rays  " << c.volume_shadow_rays << "\n";
     out << "  bvh built           " << (scene.surfaces() != nullptr ? "yes" : "no") << "\n";
+    if (scene.gi() != nullptr)
+        out << "  global illumination " << scene.gi()->summary() << "\n";
     out << "  non-finite samples  " << c.nonfinite_samples << "\n";
     out << "  density lookups     " << c.density_lookups << "\n";
     out << "  transmittance rays  " << c.transmittance_rays << "\n";
