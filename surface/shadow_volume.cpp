@@ -101,40 +101,51 @@ bool is_closed(const WeldedMesh& mesh) {
 void add_volumes(const WeldedMesh& mesh, const Vec3& light, float far_distance,
                  ShadowVolumeGeometry& out) {
     const bool closed = is_closed(mesh);
-    // Triangles turned to face the light, counter-clockwise seen from it.
-    std::vector<std::array<uint32_t, 3>> caps;
+    // Triangles turned to face the light, counter-clockwise seen from it, with the number of
+    // times each occurs (a surface modelled on both sides gives the same cap twice).
+    std::map<std::array<uint32_t, 3>, int> cap_count;
+    const auto add_cap = [&cap_count](std::array<uint32_t, 3> t) {
+        // Rotate the smallest index first: one key per oriented triangle.
+        while (t[0] > t[1] || t[0] > t[2])
+            t = {t[1], t[2], t[0]};
+        ++cap_count[t];
+    };
     for (const auto& t : mesh.triangles) {
         const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
         const float facing = glm::dot(glm::cross(b - a, c - a), light - a);
         if (facing > 0.0f)
-            caps.push_back(t);
+            add_cap(t);
         else if (facing < 0.0f && !closed)
-            caps.push_back({t[0], t[2], t[1]});
+            add_cap({t[0], t[2], t[1]});
         // facing == 0: edge-on to the light, bounds no volume.
     }
     // Silhouette: directed cap edges whose reverse is no cap edge. Where two caps share an edge
     // (traversed both ways), their volumes' side walls would coincide with opposite normals
     // and cancel in every count, so neither is built.
     std::map<Edge, int> edges;
-    for (const auto& t : caps)
+    for (const auto& [t, n] : cap_count)
         for (int k = 0; k < 3; ++k)
-            ++edges[{t[k], t[(k + 1) % 3]}];
+            edges[{t[k], t[(k + 1) % 3]}] += n;
     const auto extrude = [&](uint32_t i) {
         const Vec3 d = mesh.positions[i] - light;
         return light + d * (far_distance / glm::length(d));
     };
     for (const auto& [edge, n] : edges) {
         const auto reverse = edges.find({edge.second, edge.first});
+        // Walls at a fold of an open mesh (two caps on the same side of one edge) coincide:
+        // one wall, counted with the multiplicity.
         const int unmatched = n - (reverse == edges.end() ? 0 : reverse->second);
-        for (int k = 0; k < unmatched; ++k) {
+        if (unmatched > 0) {
             out.sides.push_back({mesh.positions[edge.first], extrude(edge.first),
                                  extrude(edge.second), mesh.positions[edge.second]});
+            out.side_weights.push_back(unmatched);
             ++out.silhouette_edges;
         }
     }
-    for (const auto& t : caps) {
+    for (const auto& [t, n] : cap_count) {
         out.near_caps.push_back({mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
         out.far_caps.push_back({extrude(t[0]), extrude(t[2]), extrude(t[1])});
+        out.cap_weights.push_back(n);
     }
 }
 
@@ -169,13 +180,21 @@ ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const Vec3& light
         mesh.positions.insert(mesh.positions.end(), {a, b, c});
         mesh.triangles.push_back({base, base + 1, base + 2});
     };
-    for (const auto& t : m_geometry.near_caps)
+    for (size_t i = 0; i < m_geometry.near_caps.size(); ++i) {
+        const auto& t = m_geometry.near_caps[i];
         add(t[0], t[1], t[2]);
-    for (const auto& t : m_geometry.far_caps)
+        m_face_weights.push_back(m_geometry.cap_weights[i]);
+    }
+    for (size_t i = 0; i < m_geometry.far_caps.size(); ++i) {
+        const auto& t = m_geometry.far_caps[i];
         add(t[0], t[1], t[2]);
-    for (const auto& q : m_geometry.sides) {
+        m_face_weights.push_back(m_geometry.cap_weights[i]);
+    }
+    for (size_t i = 0; i < m_geometry.sides.size(); ++i) {
+        const auto& q = m_geometry.sides[i];
         add(q[0], q[1], q[2]);
         add(q[0], q[2], q[3]);
+        m_face_weights.insert(m_face_weights.end(), 2, m_geometry.side_weights[i]);
     }
     if (!mesh.triangles.empty()) {
         Shape shape;
@@ -207,7 +226,8 @@ int ShadowVolumes::count_crossings(const Ray& ray, float sign_of_exit) const {
         // Faces sharing an edge hit at the same t are counted once: the next search starts
         // strictly after t.
         const bool exits = glm::dot(hit->geometric_normal, r.direction) > 0.0f;
-        count += exits ? static_cast<int>(sign_of_exit) : -static_cast<int>(sign_of_exit);
+        const int weight = m_face_weights[hit->primitive];
+        count += (exits ? 1 : -1) * static_cast<int>(sign_of_exit) * weight;
         r.t_min = hit->t;
     }
     return count;

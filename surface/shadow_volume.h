@@ -30,10 +30,14 @@
 namespace kasumi {
 
 /// The polygons of the shadow volumes, outward-facing (counter-clockwise seen from outside).
+/// Coincident faces (a wall shared by two volumes at a fold of an open mesh, a cap modelled twice)
+/// are stored once with a multiplicity: a ray crossing them at one t must count each.
 struct ShadowVolumeGeometry {
     std::vector<std::array<Vec3, 3>> near_caps;
-    std::vector<std::array<Vec3, 3>> far_caps;
-    std::vector<std::array<Vec3, 4>> sides;  ///< a, a', b', b for silhouette edge a → b
+    std::vector<std::array<Vec3, 3>> far_caps;  ///< far_caps[i] closes near_caps[i]
+    std::vector<int> cap_weights;               ///< multiplicity of near_caps[i] and far_caps[i]
+    std::vector<std::array<Vec3, 4>> sides;     ///< a, a', b', b for silhouette edge a → b
+    std::vector<int> side_weights;              ///< multiplicity of sides[i]
     size_t silhouette_edges = 0;
 };
 
@@ -68,6 +72,7 @@ class ShadowVolumes {
 
     Vec3 m_light;
     ShadowVolumeGeometry m_geometry;
+    std::vector<int> m_face_weights;          ///< per triangle of m_faces
     std::unique_ptr<SurfaceScene> m_faces;    ///< null when no shape casts a volume
     std::unique_ptr<SurfaceScene> m_spheres;  ///< null when the scene has no spheres
 };

@@ -1,5 +1,6 @@
 // Shadow volumes against ray-traced shadows: every pixel's lit/unlit state is the same on a
-// scene of closed meshes, a box and an open plate, with the eye outside and inside a volume.
+// scene of closed meshes, a box, an open plate, a two-sided panel and an open fold, with the eye
+// outside and inside a volume.
 #include "surface/shadow_volume.h"
 
 #include <gtest/gtest.h>
@@ -82,6 +83,19 @@ std::vector<Shape> mesh_scene() {
     plate.geometry = QuadShape{{Vec3(1.2f, 1.8f, -1.4f), Vec3(2.0f, 2.0f, -1.4f),
                                 Vec3(2.0f, 2.0f, -0.6f), Vec3(1.2f, 1.8f, -0.6f)}};
     shapes.push_back(plate);
+    // A panel modelled on both sides (each triangle twice, opposite windings): open, with
+    // coincident caps and walls that must count twice.
+    TriangleMesh panel;
+    panel.positions = {Vec3(-2.4f, 1.2f, -1.6f), Vec3(-1.8f, 1.3f, -1.6f), Vec3(-1.8f, 1.4f, -2.2f),
+                       Vec3(-2.4f, 1.3f, -2.2f)};
+    panel.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 2, 1}, {0, 3, 2}};
+    shapes.push_back(mesh_shape(panel));
+    // An open fold: two triangles on one edge, one facing the light and one turned away.
+    TriangleMesh fold;
+    fold.positions = {Vec3(2.2f, 1.0f, 0.6f), Vec3(2.2f, 1.0f, 1.4f), Vec3(2.8f, 1.6f, 1.0f),
+                      Vec3(2.9f, 1.2f, 1.0f)};
+    fold.triangles = {{0, 1, 2}, {1, 0, 3}};
+    shapes.push_back(mesh_shape(fold));
     return shapes;
 }
 
