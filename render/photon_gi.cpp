@@ -28,7 +28,7 @@ Rgb PhotonGi::volume_radiance(const SceneRuntime& scene, const Ray& segment, Pcg
 std::string PhotonGi::summary() const {
     char text[320];
     std::snprintf(text, sizeof(text),
-                  "photon maps: global %zu stored of %llu emitted, caustic %zu of %llu, volume %zu "
+                  "global %zu stored of %llu emitted, caustic %zu of %llu, volume %zu "
                   "of %llu; tracing %.2f s, kd-trees %.2f s",
                   m_maps.global.size(), static_cast<unsigned long long>(m_maps.global_emitted),
                   m_maps.caustic.size(), static_cast<unsigned long long>(m_maps.caustic_emitted),
