@@ -35,6 +35,10 @@ float SceneRuntime::staged_visibility(size_t light, const Vec3& p, const Vec3& n
 SceneRuntime::SceneRuntime(SceneDesc desc) : SceneRuntime(std::move(desc), nullptr) {}
 
 SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces)
+    : SceneRuntime(std::move(desc), std::move(surfaces), nullptr) {}
+
+SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces,
+                           std::shared_ptr<const SkyLuts> sky_tables)
     : m_desc(std::move(desc)),
       m_plan(make_plan(m_desc)),
       m_camera(m_desc.camera, m_desc.film.width, m_desc.film.height) {
@@ -52,7 +56,8 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
     if (m_plan.volume)
         m_media = MediumSet(m_desc.media);
     if (m_desc.sky)
-        m_sky = std::make_unique<SkyRenderer>(m_desc.sky, m_desc.camera.position);
+        m_sky = std::make_unique<SkyRenderer>(m_desc.sky, m_desc.camera.position,
+                                              std::move(sky_tables));
     m_gi = make_gi_method(*this);
     if (m_gi)
         add_gi_summary(m_plan, *m_gi);

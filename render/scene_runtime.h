@@ -35,6 +35,11 @@ class SceneRuntime {
     /// needs it (null: build). The caller guarantees it was built from the same desc.shapes
     /// (render/sequence.h reuses one across the frames of a sequence).
     SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces);
+    /// As above, and takes `sky_tables` as the sky's sun-independent tables (fast mode; null:
+    /// build). The caller guarantees they were built for the same atmosphere, wavelengths and
+    /// sun angular radius (SkyRenderer::shared_tables() of an earlier frame).
+    SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces,
+                 std::shared_ptr<const SkyLuts> sky_tables);
 
     const SceneDesc& desc() const { return m_desc; }
     const Plan& plan() const { return m_plan; }

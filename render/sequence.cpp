@@ -226,10 +226,18 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         const std::string key = options.reuse ? bvh_key(doc) : std::string();
         std::shared_ptr<const SurfaceScene> bvh = scene.cache.surfaces(key);
         const bool bvh_reused = bvh != nullptr;
-        const SceneRuntime runtime(std::move(desc), std::move(bvh));
+        const std::string sky_key =
+            options.reuse ? sky_tables_key(doc, options.scene_path, desc.sky.get()) : std::string();
+        std::shared_ptr<const SkyLuts> sky_tables = scene.cache.sky_tables(sky_key);
+        const SceneRuntime runtime(std::move(desc), std::move(bvh), std::move(sky_tables));
         if (runtime.surfaces() != nullptr && !bvh_reused) {
             scene.cache.count_bvh_built();
             scene.cache.remember_surfaces(key, runtime.shared_surfaces());
+        }
+        if (runtime.sky() != nullptr && runtime.sky()->shared_tables() != nullptr &&
+            !runtime.sky()->tables_reused()) {
+            scene.cache.count_sky_tables_built();
+            scene.cache.remember_sky_tables(sky_key, runtime.sky()->shared_tables());
         }
         const double setup_seconds = seconds_since(frame_start);
 

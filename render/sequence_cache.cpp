@@ -3,6 +3,7 @@
 #include "lights/light_json.h"
 #include "volume/medium_json.h"
 
+#include <cstdio>
 #include <sstream>
 #include <vector>
 
@@ -80,6 +81,8 @@ ReuseCounts& ReuseCounts::operator+=(const ReuseCounts& o) {
     grids_reused += o.grids_reused;
     bvh_built += o.bvh_built;
     bvh_reused += o.bvh_reused;
+    sky_tables_built += o.sky_tables_built;
+    sky_tables_reused += o.sky_tables_reused;
     return *this;
 }
 
@@ -87,6 +90,8 @@ std::string reuse_text(const ReuseCounts& c) {
     std::vector<std::string> reused, built;
     if (c.bvh_reused)
         reused.push_back("bvh");
+    if (c.sky_tables_reused)
+        reused.push_back("sky tables");
     append(reused, c.meshes_reused, "mesh", "meshes");
     append(reused, c.ies_reused, "IES profile", "IES profiles");
     append(reused, c.grids_reused, "grid", "grids");
@@ -95,6 +100,8 @@ std::string reuse_text(const ReuseCounts& c) {
     append(reused, c.media_reused - c.grids_reused, "other medium", "other media");
     if (c.bvh_built)
         built.push_back("bvh");
+    if (c.sky_tables_built)
+        built.push_back("sky tables");
     append(built, c.meshes_loaded, "mesh", "meshes");
     append(built, c.ies_loaded, "IES profile", "IES profiles");
     append(built, c.grids_loaded, "grid", "grids");
@@ -154,6 +161,21 @@ void SequenceCache::remember_surfaces(const std::string& key,
     m_bvh = std::move(bvh);
 }
 
+std::shared_ptr<const SkyLuts> SequenceCache::sky_tables(const std::string& key) {
+    if (!m_enabled || !m_sky_tables || key.empty() || key != m_sky_key)
+        return nullptr;
+    ++m_counts.sky_tables_reused;
+    return m_sky_tables;
+}
+
+void SequenceCache::remember_sky_tables(const std::string& key,
+                                        std::shared_ptr<const SkyLuts> tables) {
+    if (!m_enabled || key.empty())
+        return;
+    m_sky_key = key;
+    m_sky_tables = std::move(tables);
+}
+
 ReuseCounts SequenceCache::end_frame() {
     sweep(m_shapes, m_frame);
     sweep(m_lights, m_frame);
@@ -173,6 +195,27 @@ std::string bvh_key(const Json& frame_doc) {
         for (const auto& item : frame_doc["materials"].items())
             key += '\n' + item.key();
     }
+    return key;
+}
+
+std::string sky_tables_key(const Json& frame_doc, const std::string& scene_path,
+                           const SkyScene* sky) {
+    if (sky == nullptr || sky->settings.mode != SkyMode::Fast || !frame_doc.contains("atmosphere"))
+        return std::string();
+    std::string key = scene_path + '\n' + frame_doc["atmosphere"].dump() + "\nnm";
+    // Exact values (hexadecimal floats): a key that differs in the last bit builds new tables.
+    char buffer[64];
+    for (const double nm : sky->atmosphere.wavelengths_nm) {
+        std::snprintf(buffer, sizeof buffer, " %a", nm);
+        key += buffer;
+    }
+    key += "\nrgb nm";  // RGB-given coefficients are placed at these in spectral mode
+    for (const double nm : sky->settings.rgb_wavelengths_nm) {
+        std::snprintf(buffer, sizeof buffer, " %a", nm);
+        key += buffer;
+    }
+    std::snprintf(buffer, sizeof buffer, "\nsun radius %a rad", sky->sun_radius_rad);
+    key += buffer;
     return key;
 }
 

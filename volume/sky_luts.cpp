@@ -49,7 +49,8 @@ SkyLuts::SkyLuts(const SkyScene& sky) {
     const size_t nb = static_cast<size_t>(m_bands);
     const double big_h = std::sqrt(m_rt * m_rt - m_rg * m_rg);
     // Transmittance: x_r = rho / H, x_mu = (d - d_min) / (d_max - d_min) (Bruneton 2017).
-    m_transmittance.assign(static_cast<size_t>(kTransmittanceW * kTransmittanceH) * nb, 0.0f);
+    auto transmittance_table = std::make_shared<std::vector<float>>(
+        static_cast<size_t>(kTransmittanceW * kTransmittanceH) * nb, 0.0f);
     for (int j = 0; j < kTransmittanceH; ++j) {
         for (int i = 0; i < kTransmittanceW; ++i) {
             const double x_mu = texel_to_unit((i + 0.5) / kTransmittanceW, kTransmittanceW);
@@ -65,14 +66,17 @@ SkyLuts::SkyLuts(const SkyScene& sky) {
             const DVec3 p(0.0, r - m_rg, 0.0);
             const DVec3 dir(std::sqrt(std::max(0.0, 1.0 - mu * mu)), mu, 0.0);
             const Bands tau = atmosphere_optical_depth(a, p, dir, 0.0, d, 64);
-            float* out = &m_transmittance[(static_cast<size_t>(j) * kTransmittanceW + i) * nb];
+            float* out =
+                &(*transmittance_table)[(static_cast<size_t>(j) * kTransmittanceW + i) * nb];
             for (size_t b = 0; b < nb; ++b)
                 out[b] = static_cast<float>(std::exp(-tau[b]));
         }
     }
     // Multiple scattering (Hillaire 2020 §5.5): 64 directions (8 x 8 stratified sphere), 20
     // nodes each, isotropic phase p_u = 1 / (4 pi).
-    m_multiple.assign(static_cast<size_t>(kMultipleW * kMultipleH) * nb, 0.0f);
+    m_transmittance = transmittance_table;
+    auto multiple_table = std::make_shared<std::vector<float>>(
+        static_cast<size_t>(kMultipleW * kMultipleH) * nb, 0.0f);
     constexpr int kDirs = 8;
     constexpr double kPu = 1.0 / (4.0 * kPiD);
     for (int j = 0; j < kMultipleH; ++j) {
@@ -121,11 +125,12 @@ SkyLuts::SkyLuts(const SkyScene& sky) {
                     }
                 }
             }
-            float* out = &m_multiple[(static_cast<size_t>(j) * kMultipleW + i) * nb];
+            float* out = &(*multiple_table)[(static_cast<size_t>(j) * kMultipleW + i) * nb];
             for (size_t b = 0; b < nb; ++b)
                 out[b] = static_cast<float>(l2[b] / std::max(1e-6, 1.0 - fms[b]));
         }
     }
+    m_multiple = multiple_table;
 }
 
 void SkyLuts::transmittance(double r, double mu, Bands& out) const {
@@ -135,7 +140,7 @@ void SkyLuts::transmittance(double r, double mu, Bands& out) const {
     const double d = distance_to_top(r, mu, m_rt);
     const double d_min = m_rt - r, d_max = rho + big_h;
     const double x_mu = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
-    lookup(m_transmittance, kTransmittanceW, kTransmittanceH,
+    lookup(*m_transmittance, kTransmittanceW, kTransmittanceH,
            unit_to_texel(std::clamp(x_mu, 0.0, 1.0), kTransmittanceW),
            unit_to_texel(rho / big_h, kTransmittanceH), out);
 }
@@ -161,7 +166,7 @@ void SkyLuts::sun_transmittance(const SkyScene& sky, const DVec3& p, Bands& out)
 void SkyLuts::multiple_scattering(double r, double mu_s, Bands& out) const {
     const double u = std::clamp(0.5 * (mu_s + 1.0), 0.0, 1.0);
     const double v = std::clamp((r - m_rg) / (m_rt - m_rg), 0.0, 1.0);
-    lookup(m_multiple, kMultipleW, kMultipleH, u, v, out);
+    lookup(*m_multiple, kMultipleW, kMultipleH, u, v, out);
 }
 
 void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double t_max, int steps,

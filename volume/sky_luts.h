@@ -7,19 +7,23 @@
 ///    summed as the geometric series 1 / (1 - f_ms) (Hillaire eqs. 5-10);
 ///  - sky view for one camera altitude and sun, 192 x 108 in (azimuth from the sun, elevation
 ///    with sqrt crowding at the horizon), marched with the two tables above.
-/// Transmittance and multiple scattering depend on the atmosphere only and are built once;
-/// the sky view depends on the sun and the camera altitude. Values per band, per unit TOA
-/// solar irradiance (radiance 1/sr).
+/// Transmittance and multiple scattering depend on the atmosphere (at the render's wavelengths)
+/// and the sun's angular radius only, not on the sun's direction: they are built once and shared
+/// by copies of a SkyLuts (render/sequence_cache.h keeps them across the frames of a sequence);
+/// the sky view depends on the sun and the camera altitude and belongs to each copy. Values per
+/// band, per unit TOA solar irradiance (radiance 1/sr).
 #include "volume/sky_scene.h"
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 namespace kasumi {
 
 class SkyLuts {
   public:
-    /// Builds the transmittance and multiple-scattering tables (sun independent).
+    /// Builds the transmittance and multiple-scattering tables (sun independent). A copy shares
+    /// them (they are immutable) and has its own sky view.
     explicit SkyLuts(const SkyScene& sky);
 
     /// Builds the sky-view table for a camera at `camera` (world metres) and the scene's sun.
@@ -42,7 +46,9 @@ class SkyLuts {
 
     /// Drops the multiple-scattering table (single scattering only), for measurements; call
     /// before build_sky_view.
-    void disable_multiple_scattering() { std::fill(m_multiple.begin(), m_multiple.end(), 0.0f); }
+    void disable_multiple_scattering() {
+        m_multiple = std::make_shared<const std::vector<float>>(m_multiple->size(), 0.0f);
+    }
 
     /// Segments shorter than this (metres) are integrated in closed form from one node.
     static constexpr double kShortSegmentM = 1000.0;
@@ -57,8 +63,8 @@ class SkyLuts {
     double m_rg = 0.0, m_rt = 0.0;
     DVec3 m_camera{0.0};
     double m_camera_r = 0.0;
-    std::vector<float> m_transmittance;  ///< [y][x][band]
-    std::vector<float> m_multiple;
+    std::shared_ptr<const std::vector<float>> m_transmittance;  ///< [y][x][band]
+    std::shared_ptr<const std::vector<float>> m_multiple;
     std::vector<float> m_sky_view;
 };
 

@@ -5,14 +5,17 @@
 
 namespace kasumi {
 
-SkyRenderer::SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world)
+SkyRenderer::SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world,
+                         std::shared_ptr<const SkyLuts> tables)
     : m_sky(std::move(sky)), m_camera(DVec3(camera_world)) {
     Bands ones{};
     for (int i = 0; i < m_sky->bands(); ++i)
         ones[i] = 1.0;
     m_white = m_sky->to_rgb(ones);
     if (m_sky->settings.mode == SkyMode::Fast) {
-        m_luts = std::make_unique<SkyLuts>(*m_sky);
+        m_tables_reused = tables != nullptr;
+        m_tables = m_tables_reused ? std::move(tables) : std::make_shared<const SkyLuts>(*m_sky);
+        m_luts = std::make_unique<SkyLuts>(*m_tables);  // shares the tables
         m_luts->build_sky_view(*m_sky, m_camera);
     }
     build_irradiance();

@@ -18,10 +18,19 @@ class SkyRenderer {
     /// Builds what the mode needs for a camera at `camera_world`: in fast mode the tables
     /// (transmittance and multiple scattering once; the sky view for this camera and sun);
     /// in both modes the table of sky irradiance on surfaces near the origin.
-    SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world);
+    /// `tables` (fast mode, may be null: build them): the sun-independent tables built earlier
+    /// for the same atmosphere, wavelengths and sun angular radius (see shared_tables()); the
+    /// render is then bit-identical to one that builds them.
+    SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world,
+                std::shared_ptr<const SkyLuts> tables = nullptr);
 
     const SkyScene& sky() const { return *m_sky; }
     const SkyLuts* luts() const { return m_luts.get(); }
+    /// Fast mode: the sun-independent tables (transmittance, multiple scattering) without a sky
+    /// view, to hand to the next frame's SkyRenderer; null in reference mode.
+    std::shared_ptr<const SkyLuts> shared_tables() const { return m_tables; }
+    /// Whether the constructor took the tables instead of building them.
+    bool tables_reused() const { return m_tables_reused; }
 
     /// Radiance of a ray that meets no surface: sky, ground of the planet and the sun's disc.
     Rgb background(const Ray& ray, Pcg32& rng) const;
@@ -46,7 +55,9 @@ class SkyRenderer {
     void build_irradiance();
 
     std::shared_ptr<const SkyScene> m_sky;
-    std::unique_ptr<SkyLuts> m_luts;
+    std::shared_ptr<const SkyLuts> m_tables;  ///< sun independent, no sky view
+    std::unique_ptr<SkyLuts> m_luts;          ///< shares m_tables' tables, plus the sky view
+    bool m_tables_reused = false;
     DVec3 m_camera{0.0};
     Rgb m_white{1.0f};  ///< to_rgb of a flat unit spectrum (transmittance normaliser)
     static constexpr int kIrrH = 16, kIrrW = 32;

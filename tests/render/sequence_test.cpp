@@ -1,7 +1,8 @@
 // Frame sequences: frame ranges and '#' patterns, thumbnails and the contact sheet, a 24-frame
 // run of the shipped fog sequence (all frames written, skip-existing leaves files untouched),
 // --frame N bit-identical to the same frame of a whole run and to `render --frame N`, reuse of
-// meshes and the BVH without changing a bit, and an animated light scaling the image.
+// meshes, the BVH and the sky's sun-independent tables without changing a bit, and an animated
+// light scaling the image.
 #include "render/sequence.h"
 #include "core/error.h"
 #include "core/exr_io.h"
@@ -237,6 +238,82 @@ TEST(Sequence, ReuseKeepsMeshesAndTheBvhWithoutChangingABit) {
                            read_exr(frame_path(rebuild.output_pattern, f)),
                            "frame " + std::to_string(f));
     }
+}
+
+/// sunset_sequence.json's scene (ground, wall, fast sky with aerial perspective) with the sun
+/// sinking from +10 to -4 deg over frames 0-3 and the ground albedo stepping from 0.3 (frames
+/// 0-1) to 0.5 (frames 2-3): the sky's sun-independent tables are built at frames 0 and 2.
+const char* kAnimatedSky = R"({
+  "camera": {"position": [-6.0, 1.6, 9.0], "look_at": [0.0, 1.6, 0.0], "fov_deg": 60},
+  "film": {"width": 32, "height": 18, "spp": 1},
+  "materials": {"white": {"type": "phong", "kd": 0.8, "ks": 0.0}},
+  "shapes": [
+    {"name": "ground", "type": "quad", "material": "white",
+     "vertices": [[-60, 0, 60], [60, 0, 60], [60, 0, -60], [-60, 0, -60]]},
+    {"name": "wall", "type": "box", "material": "white", "min": [-2.5, 0, -0.1], "max": [2.5, 3.0, 0.1]}
+  ],
+  "atmosphere": {"ground_albedo": 0.3},
+  "sun": {"elevation_deg": 10, "azimuth_deg": 160, "illuminance_lux": 128000},
+  "render": {"seed": 1, "sky": {"mode": "fast"}},
+  "animate": {
+    "/sun/elevation_deg": [[0, 10], [3, -4]],
+    "/atmosphere/ground_albedo": [[0, 0.3], [1, 0.3], [2, 0.5], [3, 0.5]]
+  }
+})";
+
+TEST(Sequence, SkyTablesAreReusedUntilTheAtmosphereChangesWithoutChangingABit) {
+    const std::string dir = test_dir("sky_reuse");
+    const std::string scene = dir + "/sky.json";
+    std::ofstream(scene) << kAnimatedSky;
+    SequenceOptions reuse = options_for(scene, dir, parse_frame_range("0-3").frames());
+    reuse.overrides.clear();
+    const SequenceSummary with = run_sequence(reuse);
+    EXPECT_EQ(with.rendered, 4u);
+    EXPECT_EQ(with.reuse.sky_tables_built, 2u);   // frames 0 and 2 (new albedo)
+    EXPECT_EQ(with.reuse.sky_tables_reused, 2u);  // frames 1 and 3
+    EXPECT_EQ(with.reuse.bvh_reused, 3u);
+
+    SequenceOptions rebuild = reuse;
+    rebuild.reuse = false;
+    rebuild.output_pattern = dir + "/rebuilt/sky.####.exr";
+    const SequenceSummary without = run_sequence(rebuild);
+    EXPECT_EQ(without.reuse.sky_tables_built, 4u);
+    EXPECT_EQ(without.reuse.sky_tables_reused, 0u);
+    for (int64_t f = 0; f < 4; ++f) {
+        expect_same_pixels(read_exr(frame_path(reuse.output_pattern, f)),
+                           read_exr(frame_path(rebuild.output_pattern, f)),
+                           "frame " + std::to_string(f));
+    }
+    // The sun-dependent tables follow the sun: the frames of one atmosphere are not alike.
+    const Image first = read_exr(frame_path(reuse.output_pattern, 0));
+    const Image second = read_exr(frame_path(reuse.output_pattern, 1));
+    EXPECT_FALSE(first.find("R")->data == second.find("R")->data);
+}
+
+TEST(SequenceCache, SkyTablesKeyIgnoresTheSunDirectionOnly) {
+    const Json doc = Json::parse(R"({"atmosphere": {"ground_albedo": 0.3}})");
+    SkyScene sky;
+    sky.settings.mode = SkyMode::Fast;
+    sky.sun_radius_rad = 0.00465;
+    const std::string key = sky_tables_key(doc, "a.json", &sky);
+    EXPECT_FALSE(key.empty());
+    SkyScene moved = sky;
+    moved.sun_direction = DVec3(0.0, 0.0, 1.0);
+    moved.sun.elevation_deg = -4.0;
+    EXPECT_EQ(sky_tables_key(doc, "a.json", &moved), key);
+    SkyScene wider = sky;
+    wider.sun_radius_rad = 0.005;  // the disc fraction above the horizon enters Psi_ms
+    EXPECT_NE(sky_tables_key(doc, "a.json", &wider), key);
+    SkyScene bluer = sky;
+    bluer.atmosphere.wavelengths_nm[2] = 450.0;
+    EXPECT_NE(sky_tables_key(doc, "a.json", &bluer), key);
+    const Json albedo = Json::parse(R"({"atmosphere": {"ground_albedo": 0.5}})");
+    EXPECT_NE(sky_tables_key(albedo, "a.json", &sky), key);
+    EXPECT_NE(sky_tables_key(doc, "b/a.json", &sky), key);  // relative table paths
+    SkyScene reference = sky;
+    reference.settings.mode = SkyMode::Reference;  // no tables to keep
+    EXPECT_TRUE(sky_tables_key(doc, "a.json", &reference).empty());
+    EXPECT_TRUE(sky_tables_key(doc, "a.json", nullptr).empty());
 }
 
 TEST(Sequence, AnimatedShapesRebuildTheBvh) {
