@@ -54,7 +54,7 @@ struct Light {
         emitter;
     ShadowMode shadows = ShadowMode::Ray;
     int samples = 16;  ///< shadow samples per shading point for extended (non-delta) lights
-    ShadowMapSettings shadow_map;  ///< used when shadows == ShadowMode::Map
+    ShadowMapSettings shadow_map{};  ///< used when shadows == ShadowMode::Map
 };
 
 /// Texels along each side of the light's shadow maps: `resolution`, or its default.

@@ -45,10 +45,10 @@ std::vector<std::pair<std::string, std::string>> stage_metadata(const StageTimes
     char value[32];
     for (const auto& [name, seconds] : timed(times)) {
         std::snprintf(value, sizeof value, "%.6f", seconds);
-        out.emplace_back(std::string("kasumi/time/") + name + "_s", value);
+        out.emplace_back(std::string("time/") + name + "_s", value);
     }
-    out.emplace_back("kasumi/plan/ran", stage_names(plan, true));
-    out.emplace_back("kasumi/plan/skipped", stage_names(plan, false));
+    out.emplace_back("plan/ran", stage_names(plan, true));
+    out.emplace_back("plan/skipped", stage_names(plan, false));
     return out;
 }
 

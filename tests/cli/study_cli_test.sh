@@ -91,6 +91,8 @@ done
 for key in kasumi/time/load_s kasumi/time/build_s kasumi/time/render_s kasumi/plan/skipped; do
   grep -aq "$key" "$work/v.exr" || fail "EXR metadata lacks $key"
 done
+# The EXR writer adds the "kasumi/" prefix once; callers must not add it again.
+grep -aq "kasumi/kasumi/" "$work/v.exr" && fail "EXR metadata keys carry the prefix twice"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures failure(s)"
