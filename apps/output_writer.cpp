@@ -50,8 +50,8 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
         {"stats/scattering_events", std::to_string(c.scattering_events)},
         {"stats/threads", std::to_string(result.threads)},
         {"stats/density_lookups_per_s_per_core",
-         std::to_string(render_rates(c, result.seconds, result.threads)
-                            .density_lookups_per_s_per_core)},
+         std::to_string(
+             render_rates(c, result.seconds, result.threads).density_lookups_per_s_per_core)},
     };
     for (auto& kv : stage_metadata(times, scene.plan()))
         image.metadata.push_back(std::move(kv));

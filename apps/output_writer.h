@@ -13,8 +13,8 @@ struct OutputPaths {
 };
 
 /// Creates parent directories, then writes both files atomically (temporary name, rename).
-/// The EXR metadata holds the stage times given (written as kasumi/time/<stage>_s: write_exr adds the prefix) and the plan's
-/// stages that ran and were skipped.
+/// The EXR metadata holds the stage times given (written as kasumi/time/<stage>_s: write_exr adds
+/// the prefix) and the plan's stages that ran and were skipped.
 void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
                           const OutputPaths& paths, const StageTimes& times = {});
 

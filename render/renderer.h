@@ -22,7 +22,7 @@ struct RenderResult {
     Film film;
     RenderCounters counters;
     double seconds = 0.0;
-    int threads = 1;  ///< worker threads the render ran on (for per-core rates)
+    int threads = 1;           ///< worker threads the render ran on (for per-core rates)
     bool interrupted = false;  ///< tiles not rendered are black
 };
 

@@ -19,9 +19,9 @@
 namespace kasumi {
 
 struct FilmDesc {
-    int width = 640;   ///< pixels, 1..16384
-    int height = 360;  ///< pixels, 1..16384
-    int spp = 16;      ///< samples per pixel, >= 1
+    int width = 640;     ///< pixels, 1..16384
+    int height = 360;    ///< pixels, 1..16384
+    int spp = 16;        ///< samples per pixel, >= 1
     bool jitter = true;  ///< false: every sample through the pixel centre (peer comparisons)
 };
 
@@ -43,7 +43,7 @@ struct RenderSettings {
     bool shadows = true;  ///< shadow rays for surfaces and media
     VolumeSettings volume;
     WhittedSettings whitted;
-    SkySettings sky;  ///< render.sky, render.spectral, render.wavelengths_nm (docs/sky.md)
+    SkySettings sky;           ///< render.sky, render.spectral, render.wavelengths_nm (docs/sky.md)
     GiMode gi = GiMode::None;  ///< render.gi: global illumination method
     PathSettings path;
     RadiositySettings radiosity;

@@ -43,8 +43,7 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
       m_plan(make_plan(m_desc)),
       m_camera(m_desc.camera, m_desc.film.width, m_desc.film.height) {
     if (m_plan.surfaces) {
-        m_surfaces =
-            surfaces ? std::move(surfaces) : std::make_shared<SurfaceScene>(m_desc.shapes);
+        m_surfaces = surfaces ? std::move(surfaces) : std::make_shared<SurfaceScene>(m_desc.shapes);
     }
     if (m_plan.shadow_rays)
         m_occlusion = std::make_unique<SurfaceOcclusion>(*m_surfaces);

@@ -41,8 +41,8 @@ struct MirrorMaterial {
 /// rest (1 - F, times `tint` on every crossing), total internal reflection. The outside is the
 /// side the shape's normal points to.
 struct DielectricMaterial {
-    float ior = 1.5f;  ///< index of refraction relative to the outside medium, > 0
-    Rgb tint{1.0f};    ///< transmittance factor per refraction, in [0, 1]
+    float ior = 1.5f;    ///< index of refraction relative to the outside medium, > 0
+    Rgb tint{1.0f};      ///< transmittance factor per refraction, in [0, 1]
     Rgb emission{0.0f};  ///< cd/m², Lambertian, from the front side (emitted_radiance)
 };
 
