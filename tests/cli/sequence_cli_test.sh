@@ -7,27 +7,9 @@
 set -u
 kasumi="$1"
 src="$2"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
+source "$(dirname "$0")/cli_lib.sh"
 scene="$src/data/scenes/fog_sequence.json"
 tiny=(--res 32x18 --spp 1)
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# expect_exit CODE PATTERN -- ARGS...: runs kasumi, checks the exit code and that stderr
-# matches PATTERN (grep -E; empty pattern skips the check).
-expect_exit() {
-  local code="$1" pattern="$2"
-  shift 3
-  "$kasumi" "$@" >"$work/stdout" 2>"$work/stderr"
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    fail "kasumi $* exited $got, expected $code; stderr: $(head -c 600 "$work/stderr")"
-  elif [ -n "$pattern" ] && ! grep -qE -- "$pattern" "$work/stderr"; then
-    fail "kasumi $* stderr lacks /$pattern/: $(head -c 600 "$work/stderr")"
-  fi
-}
 
 count_files() { find "$1" -maxdepth 1 -name "$2" 2>/dev/null | wc -l; }
 # Temporaries of core/atomic_file: .<name>.<pid>.<n>.tmp

@@ -7,23 +7,7 @@
 set -u
 kasumi="$1"
 src="$2"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-expect_exit() {  # CODE PATTERN -- ARGS...
-  local code="$1" pattern="$2"
-  shift 3
-  "$kasumi" "$@" >"$work/stdout" 2>"$work/stderr"
-  local got=$?
-  if [ "$got" -ne "$code" ]; then
-    fail "kasumi $* exited $got, expected $code; stderr: $(head -c 400 "$work/stderr")"
-  elif [ -n "$pattern" ] && ! grep -qE -- "$pattern" "$work/stderr"; then
-    fail "kasumi $* stderr lacks /$pattern/: $(head -c 400 "$work/stderr")"
-  fi
-}
+source "$(dirname "$0")/cli_lib.sh"
 
 cat >"$work/fog.json" <<JSON
 {
