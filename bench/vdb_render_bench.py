@@ -41,9 +41,9 @@ import math
 import os
 import re
 import statistics
-import subprocess
-import sys
-import time
+
+import bench_common
+from bench_common import run
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -55,15 +55,6 @@ FOV_DEG = 30.0
 LIGHT_TOWARD = (0.55, 0.65, -0.2)  # direction toward the light (vdb_render's -light)
 SIGMA_S_PER_M = 0.1  # per unit density
 SIGMA_A_PER_M = 0.002
-
-
-def run(cmd, **kw):
-    t0 = time.perf_counter()
-    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
-    wall = time.perf_counter() - t0
-    if p.returncode != 0:
-        sys.exit("failed (%d): %s\n%s%s" % (p.returncode, " ".join(cmd), p.stdout, p.stderr))
-    return p, wall
 
 
 # kasumi configurations timed against vdb_render (name, render.volume settings, unbiased?).
@@ -100,16 +91,9 @@ def kasumi_scene(vdb_path, voxel_m, res_px, spp, seed, volume):
 
 
 def render_kasumi(args, scene_path, out, spp, seed, threads):
-    cmd = [args.kasumi, "render", scene_path, "-o", out, "--no-preview", "--spp", str(spp),
-           "--seed", str(seed), "--threads", str(threads), "-v"]
-    p, wall = run(cmd)
-    stats = {}
-    for line in p.stderr.splitlines():
-        m = re.match(r"\s+(time|density lookups|lookups/s/core|camera rays/s|all rays/s|"
-                     r"transmittance rays|free flights|threads)\s+([0-9.eE+-]+)", line)
-        if m:
-            stats[m.group(1)] = float(m.group(2))
-    return stats.get("time", wall), wall, stats
+    t, wall, _, stats = bench_common.render_kasumi(args.kasumi, scene_path, out, spp, seed,
+                                                   threads)
+    return t, wall, stats
 
 
 def render_vdb(args, vdb_path, voxel_m, out, res_px, step, shadowstep, cutoff, threads):
@@ -121,14 +105,13 @@ def render_vdb(args, vdb_path, voxel_m, out, res_px, step, shadowstep, cutoff, t
            "-absorb", ",".join(["%g" % (SIGMA_A_PER_M * voxel_m)] * 3),
            "-gain", "0", "-step", "%g" % step, "-shadowstep", "%g" % shadowstep,
            "-cutoff", "%g" % cutoff, "-cpus", str(threads), "-v"]
-    p, wall = run(cmd)
+    p, wall, _ = run(cmd)
     m = re.search(r"ray-tracing.*\n.*completed in ([0-9.eE+-]+) sec", p.stdout)
     return (float(m.group(1)) if m else wall), wall
 
 
 def compare(args, ref_a, ref_b, image):
-    p, _ = run([args.compare, ref_a, ref_b, image])
-    return json.loads(p.stdout)
+    return bench_common.compare(args.compare, ref_a, ref_b, image)
 
 
 def main():
