@@ -1,6 +1,10 @@
 #include "lights/sun.h"
 
+#include "core/cie_1931.h"
+#include "core/error.h"
+#include "core/reference_spectra.h"
 #include "core/spectrum.h"
+#include "core/wavelength_table_json.h"
 #include "lights/solar_position.h"
 
 namespace kasumi {
@@ -27,18 +31,35 @@ double sun_limb_darkening_mean(double lambda_nm) {
 }
 
 double sun_relative_spectrum(const SunDesc& sun, double lambda_nm) {
-    const auto& t = sun.spectrum;
-    if (t.empty())
-        return planck_radiance(lambda_nm, kSunTemperatureK);
-    if (lambda_nm <= t.front().first)
-        return t.front().second;
-    if (lambda_nm >= t.back().first)
-        return t.back().second;
-    size_t i = 1;
-    while (t[i].first < lambda_nm)
-        ++i;
-    const double f = (lambda_nm - t[i - 1].first) / (t[i].first - t[i - 1].first);
-    return t[i - 1].second + f * (t[i].second - t[i - 1].second);
+    switch (sun.spectrum) {
+        case SunSpectrum::Blackbody:
+            return planck_radiance(lambda_nm, sun.blackbody_k);
+        case SunSpectrum::Table:
+            return sun.spectrum_table.at(lambda_nm);
+        case SunSpectrum::AstmG173:
+            break;
+    }
+    return solar_irradiance_astm_g173().at(lambda_nm);
+}
+
+glm::dvec3 sun_rgb_color(const SunDesc& sun) {
+    double lo = kCieFirstNm, hi = kCieFirstNm + kCieStepNm * (kCieSamples - 1);
+    if (sun.spectrum == SunSpectrum::Table) {
+        lo = std::max(lo, sun.spectrum_table.min_nm());
+        hi = std::min(hi, sun.spectrum_table.max_nm());
+    }
+    // Trapezoid rule on a 1 nm grid (the tables are linear between 5 and 10 nm rows).
+    const int n = std::max(1, static_cast<int>(std::ceil(hi - lo)));
+    const double step = (hi - lo) / n;
+    glm::dvec3 xyz(0.0);
+    for (int i = 0; i <= n; ++i) {
+        const double nm = lo + step * i;
+        const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+        xyz += w * sun_relative_spectrum(sun, nm) * cie_1931_cmf(nm);
+    }
+    if (!(hi > lo) || !(xyz.y > 0.0))
+        throw_input_error("the sun's spectrum has no luminance between 360 and 830 nm");
+    return xyz_to_rec709(xyz / xyz.y);
 }
 
 SunDesc parse_sun(const JsonNode& node) {
@@ -81,21 +102,26 @@ SunDesc parse_sun(const JsonNode& node) {
     if (lux)
         sun.illuminance_lux = lux->non_negative();
     if (const auto spectrum = reader.optional("spectrum")) {
-        double last = 0.0;
-        for (const JsonNode& row : spectrum->elements()) {
-            if (!row.is_array() || row.size() != 2)
-                row.fail("expected [wavelength_nm, value]");
-            const double nm = row.child(size_t{0}).as_double();
-            const double v = row.child(size_t{1}).as_double();
-            if (!(nm > last))
-                row.fail("wavelengths must increase");
-            if (!(v >= 0.0))
-                row.fail("value must be >= 0");
-            sun.spectrum.emplace_back(nm, v);
-            last = nm;
+        if (spectrum->is_string() && spectrum->as_string() == "astm_g173") {
+            sun.spectrum = SunSpectrum::AstmG173;
+        } else if (spectrum->is_string() && spectrum->as_string() == "blackbody") {
+            sun.spectrum = SunSpectrum::Blackbody;
+        } else if (spectrum->is_object()) {
+            JsonObjectReader r(*spectrum);
+            const JsonNode t = r.required("blackbody_K");
+            r.finish();
+            sun.blackbody_k = t.as_double();
+            if (!(sun.blackbody_k >= 1000.0 && sun.blackbody_k <= 100000.0))
+                t.fail("must be in [1000, 100000] K");
+            sun.spectrum = SunSpectrum::Blackbody;
+        } else if (is_wavelength_table(*spectrum)) {
+            sun.spectrum_table = read_wavelength_table(*spectrum);
+            sun.spectrum = SunSpectrum::Table;
+        } else {
+            spectrum->fail(
+                "expected \"astm_g173\", \"blackbody\", {\"blackbody_K\": T}, a CSV file path "
+                "or [[wavelength_nm, value], ...]");
         }
-        if (sun.spectrum.size() < 2)
-            spectrum->fail("needs at least two rows");
     }
     if (const auto r = reader.optional("angular_radius_deg"))
         sun.angular_radius_deg = r->in_open(0.0f, 10.0f);

@@ -3,6 +3,7 @@
 /// `illuminance_lux` is the illuminance at the top of the atmosphere on a surface facing the
 /// sun; the atmosphere (volume/sky_scene.h) attenuates it on the way down.
 /// Directions: +y up, azimuth clockwise from north with north = -z and east = +x.
+#include "core/csv_table.h"
 #include "core/json_node.h"
 #include "core/math.h"
 
@@ -16,17 +17,26 @@ namespace kasumi {
 inline constexpr double kSolarIlluminanceLux = 128000.0;
 /// Mean angular radius of the solar disc seen from Earth, degrees (959.63 arcsec at 1 au).
 inline constexpr double kSunAngularRadiusDeg = 0.26656;
-/// Nominal effective temperature of the sun, K (IAU 2015 Resolution B3): the default shape of
-/// the spectrum in spectral mode.
+/// Nominal effective temperature of the sun, K (IAU 2015 Resolution B3): the black body of
+/// `"spectrum": "blackbody"`.
 inline constexpr double kSunTemperatureK = 5772.0;
+
+/// The shape of the sun's spectrum: the measured extraterrestrial table (default), a black
+/// body, or a table from the scene.
+enum class SunSpectrum {
+    AstmG173,   ///< ASTM G173-03 ETR, 10 nm bins (core/reference_spectra.h)
+    Blackbody,  ///< Planck's law at SunDesc::blackbody_k
+    Table,      ///< SunDesc::spectrum_table
+};
 
 struct SunDesc {
     double elevation_deg = 45.0;  ///< geometric elevation above the horizon
     double azimuth_deg = 180.0;   ///< clockwise from north
     double illuminance_lux = kSolarIlluminanceLux;
     double angular_radius_deg = kSunAngularRadiusDeg;
-    /// Relative spectral irradiance (nm, any unit) for spectral mode; empty: black body.
-    std::vector<std::pair<double, double>> spectrum;
+    SunSpectrum spectrum = SunSpectrum::AstmG173;
+    double blackbody_k = kSunTemperatureK;  ///< for SunSpectrum::Blackbody
+    WavelengthTable spectrum_table;         ///< relative irradiance, for SunSpectrum::Table
     std::string datetime;  ///< when the position came from latitude/longitude/datetime
 };
 
@@ -41,9 +51,15 @@ double sun_limb_darkening(double lambda_nm, double mu);
 /// Mean of sun_limb_darkening over the disc (by area): 2 / (2 + alpha).
 double sun_limb_darkening_mean(double lambda_nm);
 
-/// Relative spectral irradiance of the sun at lambda_nm: the table if given (linear, clamped),
-/// else Planck's law at kSunTemperatureK.
+/// Relative spectral irradiance of the sun at lambda_nm (any unit: the scale is set by
+/// illuminance_lux): the built-in ASTM table or a scene table, linear between rows (an input
+/// error outside the table's range, naming the table), or Planck's law.
 double sun_relative_spectrum(const SunDesc& sun, double lambda_nm);
+
+/// Colour of the sun's spectrum in linear Rec.709 with luminance 1: the CIE 1931 integral of
+/// the spectrum over 360-830 nm (where the spectrum is defined), divided by its Y. RGB mode
+/// gives the sun's three channels these weights times illuminance_lux.
+glm::dvec3 sun_rgb_color(const SunDesc& sun);
 
 /// Parses a "sun" object; errors name the file and JSON path.
 SunDesc parse_sun(const JsonNode& node);

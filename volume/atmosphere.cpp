@@ -24,6 +24,15 @@ DensityProfile DensityProfile::tent(double center_m, double half_width_m) {
     return p;
 }
 
+double DensityProfile::column_m(double top_altitude_m) const {
+    const int n = std::max(1, static_cast<int>(std::ceil(top_altitude_m)));
+    const double step = top_altitude_m / n;
+    double sum = 0.5 * (density(0.0) + density(top_altitude_m));
+    for (int i = 1; i < n; ++i)
+        sum += density(step * i);
+    return sum * step;
+}
+
 AtmosphereCoefficients atmosphere_coefficients(const Atmosphere& a, double h) {
     AtmosphereCoefficients c;
     const double d_r = a.rayleigh.profile.density(h);

@@ -1,9 +1,12 @@
 #include "volume/atmosphere_json.h"
 
+#include "core/reference_spectra.h"
+#include "core/wavelength_table_json.h"
 #include "phase/phase_json.h"
 
 #include <algorithm>
 #include <array>
+#include <optional>
 
 namespace kasumi {
 
@@ -12,7 +15,9 @@ namespace {
 constexpr double kRayleighDefault[3] = {5.802e-6, 13.558e-6, 33.1e-6};  // Hillaire 2020, 1/m
 constexpr double kMieScatteringDefault = 3.996e-6;                      // Bruneton 2017
 constexpr double kMieExtinctionDefault = 4.440e-6;
-constexpr double kOzoneDefault[3] = {0.650e-6, 1.881e-6, 0.085e-6};  // Bruneton 2017, 1/m
+// Ozone: Bruneton 2017's 300 DU in the tent 25 ± 15 km with the 233 K cross sections, i.e.
+// 0.650e-6, 1.881e-6, 0.085e-6 1/m at the peak at 680, 550, 440 nm (ozone_absorption_auto).
+constexpr double kOzoneCenterDefault = 25000.0, kOzoneHalfWidthDefault = 15000.0;
 
 void fill_rgb(Bands& out, const double rgb[3], const std::vector<double>& nm,
               const std::vector<double>& rgb_nm) {
@@ -20,46 +25,48 @@ void fill_rgb(Bands& out, const double rgb[3], const std::vector<double>& nm,
         out[i] = interpolate_rgb_coefficient(rgb, rgb_nm, nm[i]);
 }
 
-/// A coefficient: a number, [r, g, b], {"table": [[nm, value], ...]} or (if allowed) "auto".
+enum class AutoCoefficient { None, Rayleigh };
+
+/// A coefficient: a number, [r, g, b], a table (a CSV file path or [[nm, value], ...]),
+/// {"table": <table>, "scale": s} (values times s), or (Rayleigh) "auto". Tables are linear in
+/// wavelength and must cover every wavelength asked for.
 Bands read_coefficient(const JsonNode& node, const std::vector<double>& nm,
-                       const std::vector<double>& rgb_nm, bool allow_auto) {
+                       const std::vector<double>& rgb_nm, AutoCoefficient auto_kind) {
     Bands out{};
-    if (node.is_string()) {
-        if (!allow_auto || node.as_string() != "auto")
-            node.fail(allow_auto ? "expected \"auto\", a number, [r, g, b] or {\"table\": ...}"
-                                 : "expected a number, [r, g, b] or {\"table\": ...}");
+    const bool allow_auto = auto_kind != AutoCoefficient::None;
+    if (node.is_string() && node.as_string() == "auto") {
+        if (!allow_auto)
+            node.fail(
+                "\"auto\" is not available here: expected a number, [r, g, b], a CSV file "
+                "path or {\"table\": ...}");
         for (size_t i = 0; i < nm.size(); ++i)
             out[i] = rayleigh_scattering_standard_air(nm[i]);
         return out;
     }
-    if (node.is_object()) {
+    std::optional<JsonNode> table_node;
+    double scale = 1.0;
+    if (is_wavelength_table(node)) {
+        table_node = node;
+    } else if (node.is_object()) {
         JsonObjectReader reader(node);
-        const JsonNode table = reader.required("table");
+        table_node = reader.required("table");
+        if (const auto s = reader.optional("scale")) {
+            scale = s->as_double();
+            if (!(scale >= 0.0))
+                s->fail("must be >= 0");
+        }
         reader.finish();
-        std::vector<std::pair<double, double>> rows;
-        for (const JsonNode& row : table.elements()) {
-            if (!row.is_array() || row.size() != 2)
-                row.fail("expected [wavelength_nm, value]");
-            const double w = row.child(size_t{0}).as_double();
-            const double v = row.child(size_t{1}).as_double();
-            if (!rows.empty() && !(w > rows.back().first))
-                row.fail("wavelengths must increase");
-            if (!(v >= 0.0))
-                row.fail("must be >= 0");
-            rows.emplace_back(w, v);
-        }
-        if (rows.size() < 2)
-            table.fail("needs at least two rows");
-        for (size_t i = 0; i < nm.size(); ++i) {
-            const double w = std::clamp(nm[i], rows.front().first, rows.back().first);
-            size_t k = 1;
-            while (k + 1 < rows.size() && rows[k].first < w)
-                ++k;
-            const double f = (w - rows[k - 1].first) / (rows[k].first - rows[k - 1].first);
-            out[i] = rows[k - 1].second + f * (rows[k].second - rows[k - 1].second);
-        }
+    }
+    if (table_node) {
+        const WavelengthTable table = read_wavelength_table(*table_node);
+        for (size_t i = 0; i < nm.size(); ++i)
+            out[i] = scale * table.at(nm[i]);
         return out;
     }
+    if (!node.is_number() && !node.is_array())
+        node.fail(allow_auto ? "expected \"auto\", a number, [r, g, b], a CSV file path or "
+                               "{\"table\": ...}"
+                             : "expected a number, [r, g, b], a CSV file path or {\"table\": ...}");
     const Rgb rgb = node.non_negative_rgb();
     const double v[3] = {rgb.r, rgb.g, rgb.b};
     fill_rgb(out, v, nm, rgb_nm);
@@ -95,6 +102,19 @@ double interpolate_rgb_coefficient(const double rgb[3], const std::vector<double
     return std::max(0.0, v0 + f * (v1 - v0));
 }
 
+double ozone_peak_number_density(const DensityProfile& profile, double top_altitude_m,
+                                 double column_du) {
+    return column_du * kDobsonUnitPerM2 / profile.column_m(top_altitude_m);
+}
+
+Bands ozone_absorption_auto(const std::vector<double>& nm, double peak_number_density) {
+    Bands out{};
+    const WavelengthTable& sigma = ozone_cross_section_233k();
+    for (size_t i = 0; i < nm.size(); ++i)
+        out[i] = sigma.at(nm[i]) * peak_number_density;
+    return out;
+}
+
 Atmosphere default_earth_atmosphere(const std::vector<double>& nm,
                                     const std::vector<double>& rgb_nm) {
     Atmosphere a;
@@ -108,8 +128,10 @@ Atmosphere default_earth_atmosphere(const std::vector<double>& nm,
         a.ground_albedo[i] = 0.3;
     }
     a.mie.profile = DensityProfile::exponential(1200.0);
-    fill_rgb(a.ozone.absorption, kOzoneDefault, nm, rgb_nm);
-    a.ozone.profile = DensityProfile::tent(25000.0, 15000.0);
+    a.ozone.profile = DensityProfile::tent(kOzoneCenterDefault, kOzoneHalfWidthDefault);
+    a.ozone.absorption = ozone_absorption_auto(
+        nm, ozone_peak_number_density(a.ozone.profile, a.top_radius_m - a.ground_radius_m,
+                                      kDefaultOzoneColumnDu));
     a.mie_phase = CornetteShanks{0.8f};
     return a;
 }
@@ -125,7 +147,7 @@ Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& nm,
     if (!(a.top_radius_m > a.ground_radius_m))
         node.fail("top_radius_m must exceed ground_radius_m");
     if (const auto v = reader.optional("ground_albedo")) {
-        a.ground_albedo = read_coefficient(*v, nm, rgb_nm, false);
+        a.ground_albedo = read_coefficient(*v, nm, rgb_nm, AutoCoefficient::None);
         for (size_t i = 0; i < nm.size(); ++i)
             if (a.ground_albedo[i] > 1.0)
                 v->fail("must be in [0, 1]");
@@ -133,7 +155,7 @@ Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& nm,
     if (const auto v = reader.optional("rayleigh")) {
         JsonObjectReader r(*v);
         if (const auto s = r.optional("scattering"))
-            a.rayleigh.scattering = read_coefficient(*s, nm, rgb_nm, true);
+            a.rayleigh.scattering = read_coefficient(*s, nm, rgb_nm, AutoCoefficient::Rayleigh);
         if (const auto h = r.optional("scale_height_m"))
             a.rayleigh.profile = DensityProfile::exponential(positive_double(*h));
         r.finish();
@@ -147,9 +169,9 @@ Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& nm,
         const auto s = r.optional("scattering");
         const auto e = r.optional("extinction");
         if (s)
-            scattering = read_coefficient(*s, nm, rgb_nm, false);
+            scattering = read_coefficient(*s, nm, rgb_nm, AutoCoefficient::None);
         if (e)
-            extinction = read_coefficient(*e, nm, rgb_nm, false);
+            extinction = read_coefficient(*e, nm, rgb_nm, AutoCoefficient::None);
         else if (s)
             extinction = scattering;  // no extinction given: non-absorbing aerosols
         for (size_t i = 0; i < nm.size(); ++i) {
@@ -166,14 +188,30 @@ Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& nm,
     }
     if (const auto v = reader.optional("ozone")) {
         JsonObjectReader r(*v);
-        if (const auto s = r.optional("absorption"))
-            a.ozone.absorption = read_coefficient(*s, nm, rgb_nm, false);
-        double center = 25000.0, half_width = 15000.0;
+        double center = kOzoneCenterDefault, half_width = kOzoneHalfWidthDefault;
         if (const auto c = r.optional("center_m"))
             center = c->as_double();
         if (const auto w = r.optional("half_width_m"))
             half_width = positive_double(*w);
         a.ozone.profile = DensityProfile::tent(center, half_width);
+        const auto column = r.optional("column_du");
+        const auto s = r.optional("absorption");
+        const bool auto_absorption = !s || (s->is_string() && s->as_string() == "auto");
+        if (column && !auto_absorption)
+            column->fail("column_du goes with \"absorption\": \"auto\" (or no absorption)");
+        if (auto_absorption) {
+            const double du = column ? column->non_negative() : kDefaultOzoneColumnDu;
+            const double thickness = a.ozone.profile.column_m(a.top_radius_m - a.ground_radius_m);
+            if (!(thickness > 0.0) && du > 0.0)
+                v->fail(
+                    "the ozone tent lies outside the atmosphere: no altitude to hold the column");
+            a.ozone.absorption = ozone_absorption_auto(
+                nm, du > 0.0 ? ozone_peak_number_density(a.ozone.profile,
+                                                         a.top_radius_m - a.ground_radius_m, du)
+                             : 0.0);
+        } else {
+            a.ozone.absorption = read_coefficient(*s, nm, rgb_nm, AutoCoefficient::None);
+        }
         r.finish();
     }
     reader.optional("comment");

@@ -18,6 +18,16 @@ Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& wav
 Atmosphere default_earth_atmosphere(const std::vector<double>& wavelengths_nm,
                                     const std::vector<double>& rgb_wavelengths_nm);
 
+/// Peak number density of ozone, molecules/m³, that puts column_du Dobson units in `profile`
+/// between the ground and top_altitude_m: column_du * kDobsonUnitPerM2 / profile.column_m(top).
+/// Bruneton 2017: 300 DU in the 25 ± 15 km tent, 5.374e18 m⁻³.
+double ozone_peak_number_density(const DensityProfile& profile, double top_altitude_m,
+                                 double column_du);
+
+/// Ozone absorption at density 1, 1/m: the 233 K cross section (core/reference_spectra.h) at
+/// each wavelength times peak_number_density.
+Bands ozone_absorption_auto(const std::vector<double>& wavelengths_nm, double peak_number_density);
+
 /// Value at lambda_nm of three values given at rgb_nm (any order), power-law interpolated.
 double interpolate_rgb_coefficient(const double rgb[3], const std::vector<double>& rgb_nm,
                                    double lambda_nm);

@@ -51,9 +51,11 @@ std::shared_ptr<const SkyScene> make_sky_scene(Atmosphere atmosphere, const SunD
     const int n = sky->atmosphere.bands;
     sky->band_to_rgb.assign(static_cast<size_t>(n), glm::dvec3(0.0));
     if (settings.spectral_bands == 0) {
-        // RGB mode: the channels are the bands; a white sun of E lux carries (E, E, E).
+        // RGB mode: the channels are the bands; a sun of E lux carries E times the Rec.709
+        // colour of its spectrum at luminance 1 (lights/sun.h), so its luminance stays E.
+        const glm::dvec3 color = sun_rgb_color(sun);
         for (int i = 0; i < 3; ++i)
-            sky->band_to_rgb[static_cast<size_t>(i)][i] = sun.illuminance_lux;
+            sky->band_to_rgb[static_cast<size_t>(i)][i] = sun.illuminance_lux * color[i];
     } else {
         // Spectral mode: E_i = k S(lambda_i) W/(m² nm) with 683 sum_i E_i ybar_i dlambda = E lux,
         // the same sum the conversion uses, so the sun above the atmosphere has exactly E lux.
