@@ -11,8 +11,9 @@
 // - "sky": one camera ray along the beam (reflection) or against it from below
 //   (transmission), paths that leave upward seeing a uniform sky of radiance 1: the radiance
 //   equals the plane albedo r(mu0) or the diffuse transmission t(mu0) of the beam problem
-//   (the slab's reflection and transmission functions are symmetric in mu, mu0; van de Hulst
-//   1980 §3.3). Exercises free flights, absorption weights, phase sampling, Russian roulette.
+//   (reciprocity makes the reflection function symmetric in mu, mu0, and with the layer's
+//   up-down symmetry the transmission function too). Exercises free flights, absorption
+//   weights, phase sampling, Russian roulette.
 // - "sun": cosine-weighted camera rays from above or below and a directional light of 1 lux
 //   normal to the beam: F = int L mu dw = pi E_cos[L] per incident flux mu0 E. Exercises
 //   next-event estimation (phase evaluation, shadow transmittance) as well.
@@ -21,7 +22,7 @@
 // below 0.5% of the answer (asserted); it must then lie within 1% of the published value (the
 // issue's bound; a false failure needs an 8-sigma deviation, rate < 1e-15) and within
 // 4 standard errors + 0.1% (the 0.1% covers the six printed digits and DISORT's own
-// discretisation; two-sided false-failure rate 6.3e-5 per check, about 1.4e-3 for the 22
+// discretisation; two-sided false-failure rate 6.3e-5 per check, about 1.1e-3 for the 17
 // checks). The test is labelled `statistical`, so the asan preset (label `unit`) skips it.
 #include "core/sampling.h"
 #include "volume/volume_path.h"
