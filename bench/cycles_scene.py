@@ -115,6 +115,14 @@ def setup(p):
     volume.render.space = "OBJECT"
     volume.render.step_size = 0.0
     volume.render.clipping = 0.0
+    # Optional shift of the grid by voxel_offset voxels along each index axis (object space),
+    # to test the two conventions for where a voxel's value sits (OpenVDB and kasumi: at the
+    # index point i; a dense texture sampled at texel centres: at i + 0.5).
+    offset = float(p.get("voxel_offset", 0.0))
+    if offset != 0.0:
+        volume.grids.load()
+        index_to_object = volume.grids[0].matrix_object.to_3x3()
+        cloud.location = cloud.rotation_euler.to_matrix() @ (index_to_object @ Vector((offset,) * 3))
     material = bpy.data.materials.new("cloud")
     material.use_nodes = True
     nodes = material.node_tree.nodes
