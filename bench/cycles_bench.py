@@ -28,10 +28,11 @@ two converged references are compared too: relative RMSE after one global scale 
 their means), which says how well the two renderers compute the same picture.
 
 Equal error: each renderer sweeps its quality settings (kasumi: samples per pixel for each
-configuration; Cycles: samples x volume step rate); the error target is Cycles' own error at
-its default step rate 1 and --target-spp samples. Each renderer's time at that error is read
-off its error-vs-time curve, interpolated linearly in log-log between the two measured points
-that bracket it (bench_common.loglog_time_at_error). Those bracketing points are then re-timed
+configuration, or the step at 1 spp for the march; Cycles: samples x volume step rate); the
+error target is Cycles' own error at its default step rate 1 and --target-spp-single or
+--target-spp-multiple samples. Each renderer's time at that error is read off its
+error-vs-time curve, interpolated linearly in log-log between the two measured points that
+bracket it (bench_common.loglog_time_at_error). Those bracketing points are then re-timed
 in --runs alternating rounds (Cycles, kasumi, Cycles, ...) and the medians used. Times: "render"
 is each program's own render time (kasumi -v `time`; Cycles: Blender's "Time:" from the first
 sample to "Finished", i.e. without scene synchronisation), "call" adds Cycles' scene
@@ -207,7 +208,7 @@ def main():
     ap.add_argument("--runs", type=int, default=5, help="alternating timed rounds")
     ap.add_argument("--threads", type=int, default=2, help="threads, both renderers")
     ap.add_argument("--kasumi-ref-spp", type=int, default=1024, help="two halves")
-    ap.add_argument("--cycles-ref-spp", type=int, default=256, help="two halves")
+    ap.add_argument("--cycles-ref-spp", type=int, default=128, help="two halves")
     ap.add_argument("--cycles-ref-step-rate", type=float, default=0.5)
     ap.add_argument("--cycles-spp", default="4,16,64", help="Cycles sample ladder")
     ap.add_argument("--step-rates", default="1,2", help="Cycles volume step rates swept")
@@ -331,7 +332,7 @@ def main():
                           % (key, rate, spp, c["render_s"], c["call_s"], c["cpu_s"], e))
             target_spp = args.target_spp_single if mode == "single" else args.target_spp_multiple
             if (1.0, target_spp) not in cyc_points:
-                sys.exit("--target-spp must be in --cycles-spp and 1 in --step-rates")
+                sys.exit("--target-spp-* must be in --cycles-spp and 1 in --step-rates")
             target = cyc_points[(1.0, target_spp)][1]
             kas_points = []
             for ci, (cname, variants) in enumerate(configs):
