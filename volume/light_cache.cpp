@@ -6,6 +6,8 @@ namespace kasumi {
 
 LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const Vec3& toward_light)
     : m_world_to_index(medium.world_to_index), m_sigma_t_per_density(medium.sigma_t_per_density()) {
+    m_grey = m_sigma_t_per_density.r == m_sigma_t_per_density.g &&
+             m_sigma_t_per_density.g == m_sigma_t_per_density.b;
     const DensityGrid& grid = *medium.grid;
     if (grid.empty())
         return;
@@ -78,7 +80,10 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
 std::optional<Rgb> LightTransmittanceCache::transmittance(const Vec3& p_world) const {
     if (m_d.empty())
         return Rgb(1.0f);
-    const Vec3 u = (Vec3(m_world_to_index * Vec4(p_world, 1.0f)) - m_lower) / m_cell;
+    return at_lattice((Vec3(m_world_to_index * Vec4(p_world, 1.0f)) - m_lower) / m_cell);
+}
+
+std::optional<Rgb> LightTransmittanceCache::at_lattice(const Vec3& u) const {
     const Vec3 f = glm::floor(u);
     if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < m_dims.x - 1 && f.y < m_dims.y - 1 &&
           f.z < m_dims.z - 1))
@@ -93,6 +98,8 @@ std::optional<Rgb> LightTransmittanceCache::transmittance(const Vec3& p_world) c
     const float x11 = v[dz + dy] + t.x * (v[dz + dy + 1] - v[dz + dy]);
     const float y0 = x00 + t.y * (x10 - x00), y1 = x01 + t.y * (x11 - x01);
     const float d = y0 + t.z * (y1 - y0);
+    if (m_grey)
+        return Rgb(std::exp(-m_sigma_t_per_density.r * d));
     return exp_neg(m_sigma_t_per_density * d);
 }
 

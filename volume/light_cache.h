@@ -28,6 +28,24 @@ class LightTransmittanceCache {
     /// Transmittance from world point p toward the light through this medium; nullopt when p is
     /// outside the cached lattice (the caller then walks the ray).
     std::optional<Rgb> transmittance(const Vec3& p) const;
+
+    /// Lattice coordinates of the points o + t d of one world ray, affine in t: u(t) = u0 + t du.
+    struct Line {
+        Vec3 u0{0.0f};
+        Vec3 du{0.0f};
+    };
+    Line line(const Vec3& origin, const Vec3& direction) const {
+        const Vec3 o(m_world_to_index * Vec4(origin, 1.0f));
+        const Vec3 d(m_world_to_index * Vec4(direction, 0.0f));
+        return {(o - m_lower) / m_cell, d / m_cell};
+    }
+    /// transmittance(origin + t direction) for the ray of `line` (no 4x4 transform per point;
+    /// equal up to rounding).
+    std::optional<Rgb> transmittance(const Line& line, float t) const {
+        if (m_d.empty())
+            return Rgb(1.0f);
+        return at_lattice(line.u0 + t * line.du);
+    }
     /// Density integral toward the light (density · metres) at lattice point (i, j, k).
     float density_integral(int i, int j, int k) const { return m_d[index(i, j, k)]; }
     IVec3 dims() const { return m_dims; }
@@ -37,6 +55,7 @@ class LightTransmittanceCache {
     static constexpr size_t kMaxPoints = size_t(1) << 19;
 
   private:
+    std::optional<Rgb> at_lattice(const Vec3& u) const;
     size_t index(int i, int j, int k) const {
         return static_cast<size_t>(i) +
                static_cast<size_t>(m_dims.x) *
@@ -48,6 +67,7 @@ class LightTransmittanceCache {
     float m_cell = 1.0f;
     IVec3 m_dims{0};
     Rgb m_sigma_t_per_density{0.0f};
+    bool m_grey = true;  ///< sigma_t equal in all channels: one exp per query
     std::vector<float> m_d;
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 /// The fixed-step walk shared by the `march` transmittance estimator and marched single
 /// scattering: nodes t_min + (u + i) h on a grid with one random offset u per ray, plus every
-/// majorant segment's ends (empty space between segments contributes nothing); the optical
-/// depth accumulates by the trapezoid rule between consecutive nodes.
+/// majorant segment's ends (empty space between segments contributes nothing; abutting segments
+/// over the same media form one run with nodes only at its ends); the optical depth accumulates
+/// by the trapezoid rule between consecutive nodes.
 #include "volume/in_scattering.h"
 #include "volume/medium_set.h"
 
@@ -21,7 +22,12 @@ glm::dvec3 march_walk(const MediumSet& media, const Ray& ray, float h, float u,
                       VolumeCounters& counters, Visit&& visit) {
     glm::dvec3 tau(0.0);
     const RayMediaQuery query(media, ray);
-    for (const MajorantSegment& s : segments) {
+    const auto constant = [&](const MajorantSegment& s) {
+        return skip_constant && s.sigma_max == s.sigma_min;
+    };
+    const size_t n = segments.size();
+    for (size_t i = 0; i < n;) {
+        const MajorantSegment& s = segments[i];
         if (!(s.t1 < kInfinity)) {
             // An endless stretch: infinite depth in every channel whose extinction is bounded
             // away from zero; the others are left as walked (a tail of zero extinction).
@@ -30,34 +36,47 @@ glm::dvec3 march_walk(const MediumSet& media, const Ray& ray, float h, float u,
                     tau[c] = HUGE_VAL;
             return tau;
         }
-        if (skip_constant && s.sigma_max == s.sigma_min) {
+        if (constant(s)) {
             tau += static_cast<double>(s.t1 - s.t0) * glm::dvec3(s.sigma_max);
+            ++i;
             continue;
         }
+        // A run of abutting segments over the same media: the coefficients are continuous
+        // across their shared ends (trilinear grids), so the trapezoid rule walks the run as one
+        // stretch and only the run's own ends (where empty space or another medium begins) get
+        // extra nodes. Per-brick segments would otherwise cost two end lookups per brick.
+        size_t j = i;
+        while (j + 1 < n && segments[j + 1].t0 == segments[j].t1 &&
+               segments[j + 1].media_mask == s.media_mask && segments[j + 1].t1 < kInfinity &&
+               !constant(segments[j + 1]))
+            ++j;
+        const float t0 = s.t0, t1 = segments[j].t1;
+        const uint32_t mask = s.media_mask;
+        i = j + 1;
         // Ends are evaluated a hair inside so a homogeneous box's face does not round outside.
-        const float inset = 1e-6f * (s.t1 - s.t0);
-        float t_prev = s.t0;
-        Rgb sigma_prev = query.coefficients(s.t0 + inset, s.media_mask).sigma_t;
+        const float inset = 1e-6f * (t1 - t0);
+        float t_prev = t0;
+        Rgb sigma_prev = query.coefficients(t0 + inset, mask).sigma_t;
         ++counters.density_lookups;
-        const double first = std::ceil(static_cast<double>(s.t0 - ray.t_min) / h - u);
-        for (double i = std::max(first, 0.0);; i += 1.0) {
-            const float t = ray.t_min + static_cast<float>((u + i) * h);
-            if (!(t < s.t1))
+        const double first = std::ceil(static_cast<double>(t0 - ray.t_min) / h - u);
+        for (double k = std::max(first, 0.0);; k += 1.0) {
+            const float t = ray.t_min + static_cast<float>((u + k) * h);
+            if (!(t < t1))
                 break;
             if (!(t > t_prev))
                 continue;
             const Vec3 x = ray.at(t);
-            const PointCoefficients k = query.coefficients(t, s.media_mask);
+            const PointCoefficients c = query.coefficients(t, mask);
             ++counters.density_lookups;
-            tau += 0.5 * static_cast<double>(t - t_prev) * glm::dvec3(sigma_prev + k.sigma_t);
+            tau += 0.5 * static_cast<double>(t - t_prev) * glm::dvec3(sigma_prev + c.sigma_t);
             t_prev = t;
-            sigma_prev = k.sigma_t;
-            if (!visit(t, x, k, s.media_mask, tau))
+            sigma_prev = c.sigma_t;
+            if (!visit(t, x, c, mask, tau))
                 return tau;
         }
-        const Rgb sigma_end = query.coefficients(s.t1 - inset, s.media_mask).sigma_t;
+        const Rgb sigma_end = query.coefficients(t1 - inset, mask).sigma_t;
         ++counters.density_lookups;
-        tau += 0.5 * static_cast<double>(s.t1 - t_prev) * glm::dvec3(sigma_prev + sigma_end);
+        tau += 0.5 * static_cast<double>(t1 - t_prev) * glm::dvec3(sigma_prev + sigma_end);
     }
     return tau;
 }

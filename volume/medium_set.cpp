@@ -298,6 +298,10 @@ Rgb MediumSet::scattering(const Vec3& p, uint32_t mask, float mu) const {
     return result;
 }
 
+float MediumSet::phase_value(uint32_t k, float mu) const {
+    return eval(phase_of(m_media[k]), mu);
+}
+
 MixtureSample MediumSet::sample_scattering(const Vec3& p, uint32_t mask, const Vec3& wo,
                                            float u_pick, Vec2 u) const {
     MixtureSample out;

@@ -94,6 +94,16 @@ class MediumSet {
     PointCoefficients coefficients(const Vec3& p, uint32_t mask) const;
     /// sum_m sigma_s,m(p) p_m(mu) over the media in `mask`, in 1/(m sr).
     Rgb scattering(const Vec3& p, uint32_t mask, float mu) const;
+    /// The same with the coefficients `k` already looked up at p (k = coefficients(p, mask)):
+    /// no second lookup when `mask` holds one medium (its sigma_s is k.sigma_s).
+    Rgb scattering(const PointCoefficients& k, const Vec3& p, uint32_t mask, float mu) const {
+        if (mask != 0 && (mask & (mask - 1)) == 0)
+            return is_black(k.sigma_s) ? Rgb(0.0f)
+                                       : k.sigma_s * phase_value(__builtin_ctz(mask), mu);
+        return scattering(p, mask, mu);
+    }
+    /// Phase function of medium k at cosine mu, 1/sr.
+    float phase_value(uint32_t k, float mu) const;
     /// Picks a medium in proportion to the luminance of its sigma_s at p (with `u_pick`), samples
     /// its phase function with `u`, and returns the mixture's value and pdf for that direction.
     MixtureSample sample_scattering(const Vec3& p, uint32_t mask, const Vec3& wo, float u_pick,

@@ -4,7 +4,15 @@
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"
 
+#include <optional>
+
 namespace kasumi {
+
+/// scattered_direct for one light (`step`: the march step, metres).
+Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t light_index,
+                         const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
+                         const Vec3& wo, const VolumeSettings& settings, float step, Pcg32& rng,
+                         VolumeCounters& counters);
 
 namespace {
 
@@ -23,34 +31,107 @@ bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight
                                     : occlusion->occluded(x, in.light_position);
 }
 
+/// exp(-depth) per channel; one exp when every medium's extinction is grey (equal channels).
+Rgb camera_transmittance(const glm::dvec3& depth, bool grey) {
+    if (grey)
+        return Rgb(std::exp(-static_cast<float>(depth.x)));
+    return Rgb(glm::exp(-depth));
+}
+
+/// What one light contributes at x once its incident light `in` and the phase-weighted
+/// scattering `f` are known: f E T V, with V from `occlusion` and T from the light cache (when
+/// `cache` is given and covers x: `cached`) or the transmittance estimator.
+Rgb light_term(const MediumSet& media, const Light& light, const OcclusionQuery* occlusion,
+               const Vec3& x, const IncidentLight& in, const Rgb& f,
+               const std::optional<Rgb>& cached, const VolumeSettings& settings, float step,
+               Pcg32& rng, VolumeCounters& counters) {
+    if (is_black(f) || (light.shadows != ShadowMode::None && blocked(occlusion, x, in, counters)))
+        return Rgb(0.0f);
+    if (cached)
+        return f * in.irradiance * *cached;
+    const Ray shadow{x, in.wi, 0.0f, in.distance >= kInfinity ? kInfinity : in.distance};
+    return f * in.irradiance *
+           estimate_transmittance(media, shadow, settings.estimator, step, rng, counters);
+}
+
+/// Per-ray constants of one light for the marched single scattering: a directional light's
+/// incident light and scattering cosine are the same at every node, and its cached
+/// transmittance is read along the ray's lattice line (no transform per node).
+struct MarchLight {
+    size_t index = 0;
+    bool directional = false;
+    IncidentLight incident;
+    float mu = 0.0f;
+    const LightTransmittanceCache* cache = nullptr;
+    LightTransmittanceCache::Line line;
+};
+
 VolumeResult march_single(const MediumSet& media, const std::vector<Light>& lights,
                           const OcclusionQuery* occlusion, const Ray& ray,
                           const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters) {
     thread_local std::vector<MajorantSegment> segments;
     media.majorants(ray, segments);
+    VolumeResult result;
+    if (segments.empty())
+        return result;
     const float h = march_step_m(media, settings);
     const Vec3 wo = -ray.direction;
-    VolumeResult result;
+    const bool grey = media.grey_extinction();
+    thread_local std::vector<MarchLight> march_lights;
+    march_lights.clear();
+    for (size_t i = 0; i < lights.size(); ++i) {
+        MarchLight m;
+        m.index = i;
+        if (std::holds_alternative<DirectionalLight>(lights[i].emitter)) {
+            // A delta light at infinity: the same incident light everywhere (no random number).
+            m.directional = true;
+            m.incident = sample_incident(lights[i], ray.origin, rng);
+            if (is_black(m.incident.irradiance))
+                continue;
+            m.mu = scattering_cosine(wo, m.incident.wi);
+            if (settings.light_cache) {
+                m.cache = media.light_cache(i, lights[i]);
+                if (m.cache != nullptr)
+                    m.line = m.cache->line(ray.origin, ray.direction);
+            }
+        }
+        march_lights.push_back(m);
+    }
     // Each node stands for a step h: with the offset uniform per ray, sum h f(t_i) is an
     // unbiased estimate of the integral of f for a given T; T itself is the trapezoid's.
-    const glm::dvec3 tau =
-        march_walk(media, ray, h, rng.next_float(), segments, false, counters,
-                   [&](float, const Vec3& x, const PointCoefficients& k, uint32_t mask,
-                       const glm::dvec3& depth) {
-                       const Rgb t_camera(glm::exp(-depth));
-                       if (max_component(t_camera) < kTailTransmittance)
-                           return false;
-                       if (media.emits())
-                           result.radiance += (h * t_camera) * media.emission(x, mask);
-                       if (!is_black(k.sigma_s)) {
-                           ++counters.steps;
-                           result.radiance +=
-                               (h * t_camera) * scattered_direct(media, lights, occlusion, x, mask,
-                                                                 wo, settings, rng, counters);
-                       }
-                       return true;
-                   });
-    result.transmittance = Rgb(glm::exp(-tau));
+    const glm::dvec3 tau = march_walk(
+        media, ray, h, rng.next_float(), segments, false, counters,
+        [&](float t, const Vec3& x, const PointCoefficients& k, uint32_t mask,
+            const glm::dvec3& depth) {
+            const Rgb t_camera = camera_transmittance(depth, grey);
+            if (max_component(t_camera) < kTailTransmittance)
+                return false;
+            if (media.emits())
+                result.radiance += (h * t_camera) * media.emission(x, mask);
+            if (is_black(k.sigma_s))
+                return true;
+            ++counters.steps;
+            Rgb direct(0.0f);
+            for (const MarchLight& m : march_lights) {
+                const Light& light = lights[m.index];
+                if (!m.directional) {
+                    direct += scattered_direct_one(media, light, m.index, occlusion, x, mask, wo,
+                                                   settings, h, rng, counters);
+                    continue;
+                }
+                // One medium in the mask: its sigma_s is k's (no second lookup).
+                if ((mask & (mask - 1)) != 0)
+                    ++counters.density_lookups;
+                const Rgb f = media.scattering(k, x, mask, m.mu);
+                const std::optional<Rgb> cached =
+                    m.cache != nullptr ? m.cache->transmittance(m.line, t) : std::nullopt;
+                direct += light_term(media, light, occlusion, x, m.incident, f, cached, settings, h,
+                                     rng, counters);
+            }
+            result.radiance += (h * t_camera) * direct;
+            return true;
+        });
+    result.transmittance = camera_transmittance(tau, grey);
     return result;
 }
 
@@ -99,36 +180,34 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
 
 }  // namespace
 
+Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t light_index,
+                         const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
+                         const Vec3& wo, const VolumeSettings& settings, float step, Pcg32& rng,
+                         VolumeCounters& counters) {
+    // One sample per light: exact for delta lights, unbiased for extended ones (irradiance at
+    // normal incidence over the pdf; no cosine inside a medium).
+    const IncidentLight in = sample_incident(light, x, rng);
+    if (is_black(in.irradiance))
+        return Rgb(0.0f);
+    const Rgb f = media.scattering(x, media_mask, scattering_cosine(wo, in.wi));
+    ++counters.density_lookups;
+    std::optional<Rgb> cached;
+    if (settings.light_cache && !is_black(f)) {
+        if (const LightTransmittanceCache* cache = media.light_cache(light_index, light))
+            cached = cache->transmittance(x);
+    }
+    return light_term(media, light, occlusion, x, in, f, cached, settings, step, rng, counters);
+}
+
 Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
                      const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                      const Vec3& wo, const VolumeSettings& settings, Pcg32& rng,
                      VolumeCounters& counters) {
     const float step = march_step_m(media, settings);
     Rgb total(0.0f);
-    for (size_t light_index = 0; light_index < lights.size(); ++light_index) {
-        const Light& light = lights[light_index];
-        // One sample per light: exact for delta lights, unbiased for extended ones (irradiance
-        // at normal incidence over the pdf; no cosine inside a medium).
-        const IncidentLight in = sample_incident(light, x, rng);
-        if (is_black(in.irradiance))
-            continue;
-        const Rgb f = media.scattering(x, media_mask, scattering_cosine(wo, in.wi));
-        ++counters.density_lookups;
-        if (is_black(f) ||
-            (light.shadows != ShadowMode::None && blocked(occlusion, x, in, counters)))
-            continue;
-        if (settings.light_cache) {
-            if (const LightTransmittanceCache* cache = media.light_cache(light_index, light)) {
-                if (const auto t = cache->transmittance(x)) {
-                    total += f * in.irradiance * *t;
-                    continue;
-                }
-            }
-        }
-        const Ray shadow{x, in.wi, 0.0f, in.distance >= kInfinity ? kInfinity : in.distance};
-        total += f * in.irradiance *
-                 estimate_transmittance(media, shadow, settings.estimator, step, rng, counters);
-    }
+    for (size_t light_index = 0; light_index < lights.size(); ++light_index)
+        total += scattered_direct_one(media, lights[light_index], light_index, occlusion, x,
+                                      media_mask, wo, settings, step, rng, counters);
     return total;
 }
 
