@@ -41,6 +41,7 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
         {"interrupted", result.interrupted ? "true" : "false"},
         {"stats/camera_rays", std::to_string(c.camera_rays)},
         {"stats/surface_shadow_rays", std::to_string(c.surface_shadow_rays)},
+        {"stats/shadow_rays_avoided", std::to_string(c.shadow_rays_avoided)},
         {"stats/volume_steps", std::to_string(c.volume_steps)},
         {"stats/volume_shadow_rays", std::to_string(c.volume_shadow_rays)},
         {"stats/nonfinite_samples", std::to_string(c.nonfinite_samples)},
@@ -79,6 +80,7 @@ std::string format_stats(const SceneRuntime& scene, const RenderResult& result,
     out << "  camera rays         " << c.camera_rays << "\n";
     out << "  surface hits        " << c.surface_hits << "\n";
     out << "  surface shadow rays " << c.surface_shadow_rays << "\n";
+    out << "  shadow rays avoided " << c.shadow_rays_avoided << " (shadow photons)\n";
     out << "  volume rays         " << c.volume_rays << "\n";
     out << "  volume steps        " << c.volume_steps << "\n";
     out << "  volume shadow rays  " << c.volume_shadow_rays << "\n";

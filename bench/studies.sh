@@ -51,3 +51,12 @@ study cloud-scattering data/scenes/cloud.json --res 96x54 --repeats 3 \
 # Soft shadows: shadow samples of both area lights x spp.
 study soft-shadows data/scenes/soft_shadows.json --res 96x54 --repeats 3 \
   --vary /lights/0/samples+/lights/1/samples=1,4,16 --vary spp=1,4,16 --reference-spp 256
+
+# Global illumination on the Cornell box: radiosity vs photon mapping vs the path tracer x spp,
+# against the path tracer at 4096 spp. Times are render_image only: the radiosity solve and the
+# photon maps are built when the scene loads (docs/gi.md gives them). The box has no mirror or
+# glass, so the caustic pass is turned off.
+study gi data/scenes/cornell_box.json --res 32x32 --repeats 3 \
+  --vary /render/gi=radiosity,photons,path --vary spp=1,4,16 \
+  --set '/render/photons={"caustic_count":0}' \
+  --reference-set '/render/gi="path"' --reference-spp 4096

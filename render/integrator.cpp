@@ -58,7 +58,7 @@ class RenderPathEnvironment final : public PathEnvironment {
 }  // namespace
 
 Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo, Pcg32& rng,
-                  RenderCounters& counters) {
+                  RenderCounters& counters, const KnownVisibility* known) {
     const SceneDesc& desc = scene.desc();
     // Mirrors and dielectrics reflect lights only along discrete directions: render/whitted.cpp
     // traces them; here they are black.
@@ -83,6 +83,10 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
         // Delta lights take one exact sample; extended lights `samples` points on the light, one
         // shadow ray each, combined by the ratio estimator of shadow_sample_weight.
         const int samples = is_delta(light) ? 1 : light.samples;
+        const bool traced = scene.occlusion() != nullptr && light.shadows == ShadowMode::Ray;
+        const KnownVisibility visible = known != nullptr && traced
+                                            ? known[&light - desc.lights.data()]
+                                            : KnownVisibility::Unknown;
         Rgb reflected(0.0f);
         float unshadowed = 0.0f;
         for (int k = 0; k < samples; ++k) {
@@ -95,6 +99,10 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
             unshadowed += luminance(in.irradiance) * cos_theta;
             if (glm::dot(ng, in.wi) <= 0.0f)
                 continue;
+            if (visible == KnownVisibility::Shadowed) {
+                ++counters.shadow_rays_avoided;
+                continue;
+            }
             const bool to_infinity = in.distance >= kInfinity;
             const Vec3 origin = offset_ray_origin(hit, in.wi);
             Rgb t_media(1.0f);
@@ -109,7 +117,9 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
                 if (is_black(t_media))
                     continue;
             }
-            if (scene.occlusion() != nullptr && light.shadows == ShadowMode::Ray) {
+            if (visible == KnownVisibility::Lit) {
+                ++counters.shadow_rays_avoided;
+            } else if (traced) {
                 ++counters.surface_shadow_rays;
                 const bool blocked = to_infinity
                                          ? scene.occlusion()->occluded_direction(origin, in.wi)

@@ -19,11 +19,21 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
 VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment, Pcg32& rng,
                                   RenderCounters& counters);
 
+/// What is known, before any shadow ray, about whether a light is blocked by surfaces at a
+/// shading point (render/photon_shadow.h decides it from shadow photons).
+enum class KnownVisibility : uint8_t {
+    Unknown,   ///< cast the shadow rays
+    Lit,       ///< nothing blocks the light: no shadow ray
+    Shadowed,  ///< the light is blocked: no shadow ray, no light
+};
+
 /// Phong shading of a surface point by the scene's lights and ambient term (no media in front);
 /// black for mirrors and dielectrics (render/whitted.h traces those).
 /// Media between the surface and each light attenuate it through the scene's transmittance
-/// estimator (stochastic for grids; `rng` drives it).
+/// estimator (stochastic for grids; `rng` drives it). `known`, if given, holds one entry per
+/// light: for lights with ray-traced shadows, Lit and Shadowed replace the occlusion test (each
+/// shadow ray not cast counts in counters.shadow_rays_avoided).
 Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo, Pcg32& rng,
-                  RenderCounters& counters);
+                  RenderCounters& counters, const KnownVisibility* known = nullptr);
 
 }  // namespace kasumi

@@ -397,6 +397,7 @@ EmittedPhoton PhotonEmitter::emit(uint64_t index, Pcg32& rng) const {
         return photon;
     photon.ray = m_sources[s]->sample(rng);
     photon.power = m_sources[s]->flux() / static_cast<float>(source_count(s));
+    photon.source = static_cast<uint32_t>(s);
     return photon;
 }
 

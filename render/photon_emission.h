@@ -20,8 +20,9 @@ struct BoundingSphere {
 
 /// A photon as it leaves its source.
 struct EmittedPhoton {
-    Ray ray;          ///< origin on the source, unit direction of travel
-    Rgb power{0.0f};  ///< flux, photometrically scaled RGB (lm)
+    Ray ray;              ///< origin on the source, unit direction of travel
+    Rgb power{0.0f};      ///< flux, photometrically scaled RGB (lm)
+    uint32_t source = 0;  ///< index of the source (lights first, in the scene's order)
 };
 
 /// A surface that emits uniform Lambertian radiance from its front: a triangle whose front is

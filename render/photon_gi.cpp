@@ -34,7 +34,12 @@ std::string PhotonGi::summary() const {
                   m_maps.caustic.size(), static_cast<unsigned long long>(m_maps.caustic_emitted),
                   m_maps.volume.size(), static_cast<unsigned long long>(m_maps.volume_emitted),
                   m_maps.trace_seconds, m_maps.build_seconds);
-    return text;
+    std::string out = text;
+    if (m_maps.shadow_emitted > 0)
+        out += "; shadow map " + std::to_string(m_maps.shadow.size()) +
+               " direct and shadow photons of " + std::to_string(m_maps.shadow_emitted) +
+               " emitted";
+    return out;
 }
 
 }  // namespace kasumi

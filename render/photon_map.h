@@ -14,7 +14,12 @@ namespace kasumi {
 struct Photon {
     Vec3 position{0.0f};  ///< world, metres
     Vec3 wi{0.0f, 0.0f, 1.0f};
-    Rgb power{0.0f};  ///< flux, photometrically scaled RGB (luminance in lm)
+    Rgb power{0.0f};  ///< flux, photometrically scaled RGB (luminance in lm); 0 in the shadow map
+    /// Shadow map only (render/photon_shadow.h): the index of the light that emitted it, and
+    /// whether it is a shadow photon (deposited behind the first surface its line from the light
+    /// meets) rather than a direct-illumination photon (at that first surface).
+    uint16_t light = 0;
+    bool shadow = false;
 };
 
 /// One neighbour found by PhotonMap::nearest.

@@ -4,6 +4,7 @@
 #include "render/gi.h"
 #include "render/integrator.h"
 #include "render/photon_estimate.h"
+#include "render/photon_shadow.h"
 #include "surface/fresnel.h"
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"
@@ -147,7 +148,19 @@ Rgb photon_phong_radiance(const PhotonRenderContext& c, const SurfaceHit& hit, c
     const auto* m = std::get_if<PhongMaterial>(&c.scene.desc().materials[hit.material]);
     if (m == nullptr)
         return Rgb(0.0f);
-    Rgb radiance = shade_surface(c.scene, hit, wo, rng, counters);
+    // Shadow photons decide, per light, where a shadow ray is needed at all.
+    const KnownVisibility* known = nullptr;
+    if (!c.maps.shadow.empty()) {
+        thread_local std::vector<KnownVisibility> visibility;
+        const size_t lights = c.scene.desc().lights.size();
+        visibility.resize(lights);
+        Vec3 ng, ns;
+        face_normals(hit, wo, ng, ns);
+        classify_shadow_photons(c.maps.shadow, hit.position, ng, c.settings.shadow_k,
+                                c.settings.max_radius_m, lights, scratch(), visibility.data());
+        known = visibility.data();
+    }
+    Rgb radiance = shade_surface(c.scene, hit, wo, rng, counters, known);
     radiance += map_radiance(c, c.maps.caustic, *m, hit, wo);
     if (c.settings.final_gather_samples > 0)
         radiance += final_gather(c, *m, hit, wo, rng);

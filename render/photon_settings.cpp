@@ -51,6 +51,10 @@ PhotonSettings parse_photon_settings(const JsonNode& node) {
         s.final_gather_samples = parse_int(*v, 0, 4096);
     if (auto v = reader.optional("max_bounces"))
         s.max_bounces = parse_int(*v, 1, 1024);
+    if (auto v = reader.optional("shadow_count"))
+        s.shadow_count = parse_count(*v);
+    if (auto v = reader.optional("shadow_k"))
+        s.shadow_k = parse_int(*v, 1, 1000);
     if (auto v = reader.optional("filter")) {
         const std::string name = v->as_string();
         if (name == "box") {

@@ -25,6 +25,10 @@ struct PhotonSettings {
     PhotonFilter filter =
         PhotonFilter::Cone;  ///< surface estimates ("box", "cone", "epanechnikov")
     int max_bounces = 32;    ///< surface and volume events per photon path, [1, 1024]
+    /// Photons emitted from the lights for the shadow map (render/photon_shadow.h), [0, 1e8];
+    /// 0 (the default) turns shadow photons off: every shadow test is a ray.
+    uint64_t shadow_count = 0;
+    int shadow_k = 16;  ///< nearest shadow-map photons that decide a point's visibility, [1, 1000]
 };
 
 /// Reads render.photons; unknown keys and out-of-range values fail with file and JSON pointer.

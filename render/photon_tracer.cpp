@@ -79,6 +79,24 @@ bool scatter_phong(const PhongMaterial& m, const Vec3& ns, const Vec3& ng, PathS
     return true;
 }
 
+/// The shadow pass for one photon: its line from the light through every surface (the same
+/// surfaces that block shadow rays), a direct-illumination photon at the first hit and a shadow
+/// photon at each hit behind it, kept at Phong surfaces (the only ones shade_surface lights).
+void trace_shadow_line(const SurfaceScene& surfaces, const std::vector<Material>& materials,
+                       const EmittedPhoton& emitted, int max_hits, std::vector<Photon>& out) {
+    Ray ray = emitted.ray;
+    const Vec3 wi = -ray.direction;
+    for (int n = 0; n < max_hits; ++n) {
+        const std::optional<SurfaceHit> hit = surfaces.intersect(ray);
+        if (!hit)
+            return;
+        if (std::holds_alternative<PhongMaterial>(materials[hit->material]))
+            out.push_back(
+                {hit->position, wi, Rgb(0.0f), static_cast<uint16_t>(emitted.source), n > 0});
+        ray = Ray{offset_ray_origin(*hit, ray.direction), ray.direction, 0.0f, kInfinity};
+    }
+}
+
 }  // namespace
 
 BoundingSphere scene_bounding_sphere(const SceneRuntime& scene) {
@@ -153,6 +171,11 @@ std::vector<Photon> trace_photons(const SceneRuntime& scene, const PhotonEmitter
         for (uint64_t i = task * kPhotonsPerTask; i < end; ++i) {
             Pcg32 rng(pass_key, i);
             const EmittedPhoton emitted = emitter.emit(i, rng);
+            if (pass == PhotonPass::Shadow) {
+                if (surfaces != nullptr && emitted.source <= 0xffffu && !is_black(emitted.power))
+                    trace_shadow_line(*surfaces, materials, emitted, max_bounces, out);
+                continue;
+            }
             PathState s{emitted.ray, emitted.power, true, true};
             for (int event = 0; event < max_bounces && !is_black(s.power); ++event) {
                 std::optional<SurfaceHit> hit;
@@ -273,12 +296,14 @@ PhotonMaps build_photon_maps(const SceneRuntime& scene, const PhotonSettings& se
     PhotonEmitter emitter(scene.desc().lights, scene_bounding_sphere(scene), triangles, spheres);
     PhotonMaps maps;
     using Clock = std::chrono::steady_clock;
+    PhotonEmitter light_emitter(scene.desc().lights, scene_bounding_sphere(scene));
     auto run = [&](PhotonPass pass, uint64_t count, PhotonMap& map, uint64_t& emitted) {
-        emitter.allot(count);
+        PhotonEmitter& source = pass == PhotonPass::Shadow ? light_emitter : emitter;
+        source.allot(count);
         emitted = count;
         const auto t0 = Clock::now();
         std::vector<Photon> photons =
-            trace_photons(scene, emitter, pass, settings.max_bounces, seed, threads);
+            trace_photons(scene, source, pass, settings.max_bounces, seed, threads);
         const auto t1 = Clock::now();
         map = PhotonMap(std::move(photons));
         const auto t2 = Clock::now();
@@ -289,6 +314,8 @@ PhotonMaps build_photon_maps(const SceneRuntime& scene, const PhotonSettings& se
     run(PhotonPass::Caustic, settings.caustic_count, maps.caustic, maps.caustic_emitted);
     const bool media = scene.plan().volume && scene.media().scatters();
     run(PhotonPass::Volume, media ? settings.volume_count : 0, maps.volume, maps.volume_emitted);
+    run(PhotonPass::Shadow, scene.desc().lights.empty() ? 0 : settings.shadow_count, maps.shadow,
+        maps.shadow_emitted);
     return maps;
 }
 

@@ -19,13 +19,18 @@ enum class PhotonPass {
               ///< events and nothing else (L S+ D); paths end at their first other event
     Volume,   ///< real scattering events in media after at least one event (the first
               ///< scattering of light straight from a light is rendered by shadow rays)
+    Shadow,   ///< the straight line of each photon from a light through every surface, media
+              ///< ignored (Jensen & Christensen 1995): a direct-illumination photon at the first
+              ///< Phong hit, shadow photons at the Phong hits behind it; no power, the light's
+              ///< index in Photon::light. Pass the lights alone to the emitter.
 };
 
 /// The three maps and how they were made.
 struct PhotonMaps {
     PhotonMap global, caustic, volume;
-    uint64_t global_emitted = 0, caustic_emitted = 0, volume_emitted = 0;
-    double trace_seconds = 0.0;  ///< wall time of the three passes
+    PhotonMap shadow;  ///< direct and shadow photons (render/photon_shadow.h)
+    uint64_t global_emitted = 0, caustic_emitted = 0, volume_emitted = 0, shadow_emitted = 0;
+    double trace_seconds = 0.0;  ///< wall time of the passes
     double build_seconds = 0.0;  ///< wall time of balancing the kd-trees
 };
 
@@ -43,7 +48,8 @@ void collect_emissive_surfaces(const SceneRuntime& scene, std::vector<EmissiveTr
 std::vector<Photon> trace_photons(const SceneRuntime& scene, const PhotonEmitter& emitter,
                                   PhotonPass pass, int max_bounces, uint64_t seed, int threads);
 
-/// All three passes with the counts of `settings`, and the kd-trees.
+/// All passes with the counts of `settings` (the shadow pass from the lights alone), and the
+/// kd-trees.
 PhotonMaps build_photon_maps(const SceneRuntime& scene, const PhotonSettings& settings,
                              uint64_t seed, int threads);
 

@@ -10,6 +10,8 @@ struct RenderCounters {
     uint64_t camera_rays = 0;
     uint64_t surface_hits = 0;
     uint64_t surface_shadow_rays = 0;
+    /// Shadow rays from surfaces not cast because shadow photons decided the visibility.
+    uint64_t shadow_rays_avoided = 0;
     uint64_t volume_rays = 0;         ///< camera rays that ran the volume stage
     uint64_t volume_steps = 0;        ///< in-scattering samples
     uint64_t volume_shadow_rays = 0;  ///< occlusion tests from media toward lights
@@ -26,6 +28,7 @@ struct RenderCounters {
         camera_rays += o.camera_rays;
         surface_hits += o.surface_hits;
         surface_shadow_rays += o.surface_shadow_rays;
+        shadow_rays_avoided += o.shadow_rays_avoided;
         volume_rays += o.volume_rays;
         volume_steps += o.volume_steps;
         volume_shadow_rays += o.volume_shadow_rays;
