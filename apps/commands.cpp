@@ -32,17 +32,6 @@ extern "C" void on_signal(int signal) {
     g_cancel.store(true);
 }
 
-Vec3 parse_vec3_arg(const std::string& text, const std::string& option) {
-    std::istringstream in(text);
-    Vec3 v;
-    char c1 = 0, c2 = 0;
-    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
-        !is_finite(v)) {
-        throw Error(ErrorKind::Usage, option + " expects X,Y,Z, got \"" + text + "\"");
-    }
-    return v;
-}
-
 void print_json(const Json& j) {
     std::cout << j.dump(2) << std::endl;
 }

@@ -1,5 +1,9 @@
 #include "apps/scene_options.h"
 
+#include "core/error.h"
+
+#include <sstream>
+
 namespace kasumi {
 
 void SceneOptions::add_to(CLI::App& command) {
@@ -15,6 +19,17 @@ SceneDesc SceneOptions::load() const {
     for (const std::string& s : sets)
         overrides.push_back(parse_override(s));
     return load_scene(scene_path, overrides);
+}
+
+Vec3 parse_vec3_arg(const std::string& text, const std::string& option) {
+    std::istringstream in(text);
+    Vec3 v;
+    char c1 = 0, c2 = 0;
+    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+        !is_finite(v)) {
+        throw Error(ErrorKind::Usage, option + " expects X,Y,Z, got \"" + text + "\"");
+    }
+    return v;
 }
 
 }  // namespace kasumi

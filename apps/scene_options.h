@@ -21,4 +21,7 @@ struct SceneOptions {
     SceneDesc load() const;
 };
 
+/// Parses a command-line vector "X,Y,Z"; throws ErrorKind::Usage naming `option` otherwise.
+Vec3 parse_vec3_arg(const std::string& text, const std::string& option);
+
 }  // namespace kasumi

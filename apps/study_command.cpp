@@ -8,23 +8,68 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace kasumi {
 
+namespace {
+
+struct Options {
+    SceneOptions scene;
+    std::vector<std::string> vary;
+    std::string reference = "auto";
+    std::vector<std::string> reference_sets;
+    int reference_spp = 0;
+    int repeats = 3;
+    std::string res;
+    int spp = 0;
+    int threads = 0;
+    std::string output;
+    std::string probe, from, to, origin, direction, exact;
+};
+
+/// The probe the options ask for (none without --probe); usage errors name the option.
+std::optional<StudyProbe> study_probe(const Options& o) {
+    const bool probe_options = !o.from.empty() || !o.to.empty() || !o.origin.empty() ||
+                               !o.direction.empty() || !o.exact.empty();
+    if (o.probe.empty()) {
+        if (probe_options)
+            throw Error(ErrorKind::Usage, "--from/--to/--origin/--direction/--exact need --probe");
+        return std::nullopt;
+    }
+    if (o.reference != "auto")
+        throw Error(ErrorKind::Usage, "--probe takes --exact, not --reference");
+    StudyProbe probe;
+    const bool transmittance = o.probe == "transmittance";
+    probe.kind = transmittance ? StudyProbe::Kind::Transmittance : StudyProbe::Kind::Radiance;
+    const std::string a_name = transmittance ? "--from" : "--origin";
+    const std::string b_name = transmittance ? "--to" : "--direction";
+    const std::string& a = transmittance ? o.from : o.origin;
+    const std::string& b = transmittance ? o.to : o.direction;
+    if (a.empty() || b.empty() || !(transmittance ? o.origin : o.from).empty() ||
+        !(transmittance ? o.direction : o.to).empty()) {
+        throw Error(ErrorKind::Usage,
+                    "--probe " + o.probe + " needs exactly " + a_name + " and " + b_name);
+    }
+    probe.a = parse_vec3_arg(a, a_name);
+    probe.b = parse_vec3_arg(b, b_name);
+    if (!transmittance && !(glm::length(probe.b) > 0.0f))
+        throw Error(ErrorKind::Usage, "--direction must be a non-zero vector");
+    if (o.exact == "beer-lambert") {
+        if (!transmittance)
+            throw Error(ErrorKind::Usage, "--exact beer-lambert is for --probe transmittance");
+        probe.exact_beer_lambert = true;
+    } else if (!o.exact.empty()) {
+        const Vec3 v = parse_vec3_arg(o.exact, "--exact");
+        probe.exact = Rgb(v.x, v.y, v.z);
+    }
+    return probe;
+}
+
+}  // namespace
+
 void add_study_command(CLI::App& root) {
-    struct Options {
-        SceneOptions scene;
-        std::vector<std::string> vary;
-        std::string reference = "auto";
-        std::vector<std::string> reference_sets;
-        int reference_spp = 0;
-        int repeats = 3;
-        std::string res;
-        int spp = 0;
-        int threads = 0;
-        std::string output;
-    };
     auto options = std::make_shared<Options>();
     CLI::App* cmd = root.add_subcommand(
         "study",
@@ -49,6 +94,17 @@ void add_study_command(CLI::App& root) {
         ->check(CLI::Range(0, 1024));
     cmd->add_option("-o,--output", options->output, "directory for study.csv, .md and .svg")
         ->required();
+    cmd->add_option("--probe", options->probe,
+                    "study a probe instead of images: transmittance (--from, --to) or radiance "
+                    "(--origin, --direction); spp = samples")
+        ->check(CLI::IsMember({"transmittance", "radiance"}));
+    cmd->add_option("--from", options->from, "transmittance probe: segment start X,Y,Z");
+    cmd->add_option("--to", options->to, "transmittance probe: segment end X,Y,Z");
+    cmd->add_option("--origin", options->origin, "radiance probe: ray origin X,Y,Z");
+    cmd->add_option("--direction", options->direction, "radiance probe: ray direction X,Y,Z");
+    cmd->add_option("--exact", options->exact,
+                    "probe's exact value: R,G,B, or beer-lambert (transmittance through "
+                    "homogeneous media); default: an automatic reference");
     cmd->callback([options] {
         StudySpec spec;
         spec.scene_path = options->scene.scene_path;
@@ -77,6 +133,7 @@ void add_study_command(CLI::App& root) {
                 throw Error(ErrorKind::Usage, "--res expects WxH, got \"" + options->res + "\"");
             }
         }
+        spec.probe = study_probe(*options);
         const bool quiet = options->scene.quiet;
         const StudyResult result = run_study(spec, [quiet](const std::string& line) {
             if (!quiet)

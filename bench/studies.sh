@@ -48,6 +48,16 @@ study cloud-step data/scenes/cloud.json --res 96x54 --repeats 3 \
 study cloud-scattering data/scenes/cloud.json --res 96x54 --repeats 3 \
   --vary /render/volume/integrator=single,multiple --vary spp=1,4,16 --reference-spp 512
 
+# Transmittance probes, estimator x samples: exact errors where a closed form exists. The
+# homogeneous fog against Beer-Lambert exp(-tau) (the march integrates tau analytically there,
+# so only the trackers are studied); the cloud's edge (T ~ 0.17) against ratio tracking at 1e6.
+study fog-transmittance data/scenes/fog_street.json --repeats 5 \
+  --probe transmittance --from 0,1,0 --to 0,1,30 --exact beer-lambert \
+  --vary /render/volume/estimator=delta,ratio,residual-ratio --vary spp=100,1000,10000
+study cloud-transmittance data/scenes/cloud.json --repeats 5 \
+  --probe transmittance --from -800,560,0 --to 800,560,0 --reference-spp 1000000 \
+  --vary /render/volume/estimator=march,delta,ratio,residual-ratio --vary spp=100,1000,10000
+
 # Soft shadows: shadow samples of both area lights x spp.
 study soft-shadows data/scenes/soft_shadows.json --res 96x54 --repeats 3 \
   --vary /lights/0/samples+/lights/1/samples=1,4,16 --vary spp=1,4,16 --reference-spp 256

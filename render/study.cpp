@@ -2,10 +2,12 @@
 
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "render/probe.h"
 #include "render/renderer.h"
 #include "render/scene_loader.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -122,11 +124,68 @@ std::unique_ptr<SceneRuntime> load_runtime(const std::string& scene_path,
         parse_scene(study_document(scene_path, sets), scene_path));
 }
 
-RenderResult render_quietly(const SceneRuntime& runtime, int threads) {
-    RenderOptions options;
-    options.threads = threads;
-    options.progress = false;
-    return render_image(runtime, options);
+/// One configuration's measured value (an image, or a probe as a 1x1 image) and its time.
+struct Measurement {
+    RgbPlane plane;
+    double seconds = 0.0;
+};
+
+RgbPlane single_pixel(const Rgb& value) {
+    RgbPlane plane;
+    plane.width = plane.height = 1;
+    plane.pixels = {value};
+    return plane;
+}
+
+/// Renders the scene (time: render_image only), or runs the probe with film.spp samples (time:
+/// the probe call only; estimator: the scene's render.volume.estimator).
+Measurement measure(const SceneRuntime& runtime, const StudySpec& spec, const std::string& what) {
+    if (!spec.probe) {
+        RenderOptions options;
+        options.threads = spec.threads;
+        options.progress = false;
+        const RenderResult r = render_image(runtime, options);
+        return {rgb_plane(r.film.to_image(), what), r.seconds};
+    }
+    const StudyProbe& probe = *spec.probe;
+    const int samples = runtime.desc().film.spp;
+    const auto start = std::chrono::steady_clock::now();
+    const Rgb value = probe.kind == StudyProbe::Kind::Radiance
+                          ? probe_radiance(runtime, probe.a, probe.b, samples).radiance
+                          : probe_transmittance(runtime, probe.a, probe.b,
+                                                runtime.desc().render.volume.estimator, samples)
+                                .transmittance;
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+    return {single_pixel(value), elapsed.count()};
+}
+
+/// exp(-tau) from `from` to `to` with tau integrated analytically (homogeneous media only).
+Rgb beer_lambert(const SceneRuntime& runtime, const Vec3& from, const Vec3& to) {
+    if (!runtime.media().all_homogeneous() || runtime.sky() != nullptr) {
+        throw Error(ErrorKind::Usage,
+                    "--exact beer-lambert needs a scene whose media are all homogeneous (no grid, "
+                    "no atmosphere); give the exact value as --exact R,G,B instead");
+    }
+    const Vec3 d = to - from;
+    const float length = glm::length(d);
+    if (!(length > 0.0f))
+        return Rgb(1.0f);
+    Ray ray;
+    ray.origin = from;
+    ray.direction = d / length;
+    ray.t_max = length;
+    return runtime.media().transmittance(ray);
+}
+
+std::string describe(const StudyProbe& probe) {
+    auto xyz = [](const Vec3& v) {
+        char text[96];
+        std::snprintf(text, sizeof text, "(%g, %g, %g)", v.x, v.y, v.z);
+        return std::string(text);
+    };
+    return probe.kind == StudyProbe::Kind::Radiance
+               ? "radiance from " + xyz(probe.a) + " along " + xyz(probe.b)
+               : "transmittance from " + xyz(probe.a) + " to " + xyz(probe.b);
 }
 
 }  // namespace
@@ -290,12 +349,31 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
         largest_spp = std::max(largest_spp, row.spp);
         result.rows.push_back(row);
     }
-    result.width = runtimes.front()->desc().film.width;
-    result.height = runtimes.front()->desc().film.height;
+    result.width = spec.probe ? 1 : runtimes.front()->desc().film.width;
+    result.height = spec.probe ? 1 : runtimes.front()->desc().film.height;
 
     // Reference.
     RgbPlane reference;
-    if (!spec.reference_file.empty()) {
+    if (spec.probe)
+        result.probe = describe(*spec.probe);
+    if (spec.probe && (spec.probe->exact || spec.probe->exact_beer_lambert)) {
+        const StudyProbe& probe = *spec.probe;
+        if (probe.exact) {
+            reference = single_pixel(*probe.exact);
+            result.reference.description = "exact value given";
+        } else {
+            reference = single_pixel(beer_lambert(*runtimes.front(), probe.a, probe.b));
+            result.reference.description =
+                "exact Beer-Lambert exp(-tau), tau integrated analytically";
+        }
+        char text[128];
+        std::snprintf(text, sizeof text, " (%.9g, %.9g, %.9g)", reference.pixels[0].r,
+                      reference.pixels[0].g, reference.pixels[0].b);
+        result.reference.description += text;
+        result.reference.exact = true;
+    } else if (!spec.reference_file.empty()) {
+        if (spec.probe)
+            throw Error(ErrorKind::Usage, "a probe study takes --exact, not a reference image");
         reference = rgb_plane(read_exr(spec.reference_file), spec.reference_file);
         if (reference.width != result.width || reference.height != result.height) {
             throw_input_error(spec.reference_file + ": reference is " +
@@ -327,11 +405,11 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
             // Seeds apart from the studied renders' so reference and test noise are independent.
             half_sets.push_back("/render/seed=" + std::to_string(seed + 1000003u * (h + 1)));
             const auto runtime = load_runtime(spec.scene_path, half_sets);
-            const RenderResult r = render_quietly(*runtime, spec.threads);
-            result.reference.seconds += r.seconds;
-            halves[h] = rgb_plane(r.film.to_image(), "reference");
+            Measurement m = measure(*runtime, spec, "reference");
+            result.reference.seconds += m.seconds;
+            halves[h] = std::move(m.plane);
             say("reference half " + std::to_string(h + 1) + "/2: " + std::to_string(half) +
-                " spp, " + std::to_string(r.seconds) + " s");
+                " spp, " + std::to_string(m.seconds) + " s");
         }
         reference = average(halves[0], halves[1]);
         result.reference.has_standard_error = true;
@@ -348,15 +426,14 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
     for (int r = 0; r < spec.repeats; ++r) {
         for (size_t k = 0; k < n; ++k) {
             const size_t c = (k + static_cast<size_t>(r)) % n;
-            const RenderResult rendered = render_quietly(*runtimes[c], spec.threads);
             StudyRow& row = result.rows[c];
-            row.seconds.push_back(rendered.seconds);
+            const Measurement m = measure(*runtimes[c], spec, row.label);
+            row.seconds.push_back(m.seconds);
             if (row.seconds.size() == 1)
-                row.error = image_error(rgb_plane(rendered.film.to_image(), row.label), reference,
-                                        spec.error);
+                row.error = image_error(m.plane, reference, spec.error);
             char line[160];
-            std::snprintf(line, sizeof line, "[repeat %d/%d] %s: %.3f s, rel MSE %.3g", r + 1,
-                          spec.repeats, row.label.c_str(), rendered.seconds, row.error.rel_mse);
+            std::snprintf(line, sizeof line, "[repeat %d/%d] %s: %.3g s, rel MSE %.3g", r + 1,
+                          spec.repeats, row.label.c_str(), m.seconds, row.error.rel_mse);
             say(line);
         }
     }

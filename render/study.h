@@ -3,6 +3,7 @@
 /// (median of repeats, interleaved across configurations) and measures its error against a
 /// reference image. docs/study.md describes the method and the shipped studies.
 #include "core/json_node.h"
+#include "core/math.h"
 #include "render/study_metrics.h"
 
 #include <cstdint>
@@ -39,6 +40,21 @@ std::vector<std::vector<size_t>> expand_combinations(const std::vector<StudyAxis
 /// dependence on a minorant); otherwise the last value listed.
 std::string most_accurate_value(const StudyAxis& axis);
 
+/// A probe studied instead of an image: every configuration measures the same quantity along
+/// one ray (a 1x1 "image"), `spp` being its number of samples, and the error is taken against
+/// the exact value when one is known (docs/study.md).
+struct StudyProbe {
+    enum class Kind { Radiance, Transmittance };
+    Kind kind = Kind::Transmittance;
+    Vec3 a{0.0f};  ///< radiance: ray origin; transmittance: segment start (metres)
+    Vec3 b{0.0f};  ///< radiance: ray direction; transmittance: segment end (metres)
+    /// The exact value, e.g. a closed form the user knows (cd/m² or transmittance).
+    std::optional<Rgb> exact;
+    /// Transmittance only: the exact value is Beer-Lambert exp(-tau) with tau integrated
+    /// analytically through homogeneous media (ErrorKind::Usage if the scene has other media).
+    bool exact_beer_lambert = false;
+};
+
 struct StudySpec {
     std::string scene_path;
     std::vector<StudyAxis> axes;
@@ -51,6 +67,7 @@ struct StudySpec {
     int reference_spp = 0;          ///< automatic reference spp; 0: max(256, 16 x largest spp)
     std::vector<std::string> reference_sets;  ///< extra /pointer=VALUE for the reference only
     ErrorSettings error;
+    std::optional<StudyProbe> probe;  ///< set: study this probe instead of rendered images
 };
 
 /// One configuration's measurements.
@@ -71,10 +88,14 @@ struct StudyReference {
     bool has_standard_error = false;
     ImageError standard_error;  ///< from two independent half-spp renders (automatic only)
     double seconds = 0.0;       ///< time to render it
+    bool exact = false;         ///< the exact value of a probe, not an estimate
 };
 
 struct StudyResult {
     std::string scene;
+    /// What was measured: empty for rendered images, else the probe ("transmittance from
+    /// (x, y, z) to (x, y, z)").
+    std::string probe;
     int width = 0, height = 0;
     std::vector<StudyAxis> axes;
     std::vector<StudyRow> rows;  ///< in expand_combinations order

@@ -93,9 +93,11 @@ std::string study_markdown(const StudyResult& result) {
     std::ostringstream out;
     const ErrorSettings& e = result.error;
     out << "# Study of `" << result.scene << "`\n\n";
-    out << result.width << "x" << result.height << " pixels; ";
-    out << "time: median render time of "
-        << (result.rows.empty() ? 0 : result.rows[0].seconds.size())
+    if (result.probe.empty())
+        out << result.width << "x" << result.height << " pixels; time: median render time of ";
+    else
+        out << "Probe: " << result.probe << " (spp: samples averaged); time: median probe time of ";
+    out << (result.rows.empty() ? 0 : result.rows[0].seconds.size())
         << " interleaved repeats (scene load and BVH build excluded).\n";
     out << "Reference: " << result.reference.description;
     if (result.reference.has_standard_error) {
@@ -104,8 +106,9 @@ std::string study_markdown(const StudyResult& result) {
                    g3(result.reference.standard_error.rel_mse);
     }
     out << ".\n\n";
-    out << "Error against the reference: RMSE over pixels and channels (cd/m²); relative MSE = "
-           "mean of (a − b)² / (b² + ε) over pixels and channels with ε = ("
+    out << "Error against the reference: RMSE over pixels and channels ("
+        << (result.probe.rfind("transmittance", 0) == 0 ? "transmittance" : "cd/m²")
+        << "); relative MSE = mean of (a − b)² / (b² + ε) over pixels and channels with ε = ("
         << g3(e.eps_fraction) << " Ȳ)², Ȳ the reference's mean luminance; max ΔY/Y over pixels "
         << "whose reference luminance exceeds " << g3(e.floor_fraction)
         << " Ȳ; ΔȲ/Ȳ: relative error of the mean luminance (a bias shows there, noise averages "
@@ -140,8 +143,11 @@ std::string study_markdown(const StudyResult& result) {
 
 std::string study_svg(const StudyResult& result) {
     LogLogPlot plot;
-    plot.title = "Study of " + std::filesystem::path(result.scene).filename().string() + " (" +
-                 std::to_string(result.width) + "x" + std::to_string(result.height) + ")";
+    plot.title =
+        "Study of " + std::filesystem::path(result.scene).filename().string() + " (" +
+        (result.probe.empty() ? std::to_string(result.width) + "x" + std::to_string(result.height)
+                              : result.probe) +
+        ")";
     plot.x_label = "render time, s (median)";
     plot.y_label = "relative MSE against the reference";
     const std::string along = result.axes.empty() ? "" : result.axes.back().key;

@@ -59,6 +59,20 @@ expect_exit 3 "fog.json: /render/volume/step_m" -- study "$work/fog.json" \
   --vary /render/volume/step_m=0.1,-1 --res 4x4 -o "$work/s3"
 [ -e "$work/s3" ] && fail "a failed study created its output directory"
 
+# A probe study: transmittance against the exact Beer-Lambert value, one CSV row per estimator.
+expect_exit 0 "wrote" -- study "$work/fog.json" --probe transmittance --from 0,0,-5 --to 0,0,5 \
+  --exact beer-lambert --vary /render/volume/estimator=march,ratio --spp 1000 --repeats 1 \
+  -o "$work/p1"
+grep -q "exact Beer-Lambert" "$work/p1/study.md" 2>/dev/null || fail "probe study.md lacks the exact reference"
+expect_exit 2 "need --probe" -- study "$work/fog.json" --exact 1,1,1 --vary spp=1,2 -o "$work/p2"
+expect_exit 2 "needs exactly --origin and --direction" -- study "$work/fog.json" \
+  --probe radiance --from 0,0,0 --to 0,0,1 --vary spp=1,2 -o "$work/p2"
+expect_exit 2 "is for --probe transmittance" -- study "$work/fog.json" --probe radiance \
+  --origin 0,0,5 --direction 0,0,-1 --exact beer-lambert --vary spp=1,2 -o "$work/p2"
+expect_exit 2 "--exact expects X,Y,Z" -- study "$work/fog.json" --probe transmittance \
+  --from 0,0,-5 --to 0,0,5 --exact 1,2 --vary spp=1,2 -o "$work/p2"
+[ -e "$work/p2" ] && fail "a failed probe study created its output directory"
+
 # render.quality: the plan prints the level's choice; an unknown level is a located input error.
 expect_exit 0 "" -- plan "$work/fog.json" --set /render/quality=draft
 grep -q "run   quality: draft: set /render/volume/step_m = 1.6;" "$work/stdout" || fail "plan lacks the quality line"
