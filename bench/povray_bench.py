@@ -55,8 +55,9 @@ import os
 import statistics
 import sys
 
-import bench_common
-from bench_common import run
+sys.dont_write_bytecode = True  # no bench/__pycache__ in the source tree
+import bench_common  # noqa: E402
+from bench_common import run  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -71,7 +72,7 @@ CASES = {
 
 # POV-Ray quality sweeps: (label, settings) per kind of case.
 POV_MEDIA_SWEEP = [("samples %d jitter %g" % (s, j), {"samples": s, "jitter": j})
-                   for j, ss in ((0.0, (3, 5, 9, 17)), (1.0, (3, 5, 9, 17, 33))) for s in ss]
+                   for j, ss in ((0.0, (3, 5, 9, 17)), (1.0, (9, 33, 65))) for s in ss]
 POV_MEDIA_REFERENCE = {"samples": 129, "jitter": 1.0, "aa_threshold": 0.001}
 POV_AREA_SWEEP = [("area %dx%d adaptive %d" % (n, n, a), {"n": n, "adaptive": a})
                   for n, a in ((3, 0), (5, 0), (9, 0), (9, 1), (17, 1), (33, 1))]
@@ -80,7 +81,8 @@ POV_AREA_REFERENCE = {"n": 65, "adaptive": 0}
 # kasumi sweeps: (label, spp, --set list) per kind of case.
 KASUMI_MEDIA_SWEEP = [("spp %d step %g m" % (spp, st), spp,
                        ["/render/volume/step_m=%g" % st])
-                      for st in (0.5, 0.25) for spp in (1, 2, 4)]
+                      for st, spps in ((4, (1,)), (2, (1,)), (1, (1,)), (0.5, (1, 2, 4)),
+                                       (0.25, (1, 2))) for spp in spps]
 KASUMI_MEDIA_REFERENCE = (["/render/volume/step_m=0.1"], 32)
 KASUMI_AREA_SWEEP = [("spp %d samples %d" % (spp, n), spp, ["/lights/0/samples=%d" % n])
                      for n in (1, 4, 16) for spp in (1, 4, 16)]
@@ -211,8 +213,6 @@ def run_case(args, case):
     pov_ref_q = POV_AREA_REFERENCE if area else POV_MEDIA_REFERENCE
     k_sweep = KASUMI_AREA_SWEEP if area else KASUMI_MEDIA_SWEEP
     k_ref_sets, k_ref_spp = KASUMI_AREA_REFERENCE if area else KASUMI_MEDIA_REFERENCE
-    if not area:
-        pov_sweep = [(label, dict(q)) for label, q in pov_sweep]
 
     # Converged references (all threads; kept between runs of the script).
     pov_ref = os.path.join(args.out, "%s_pov_ref.exr" % case)
@@ -241,12 +241,14 @@ def run_case(args, case):
         _, _, img = render_pov(args, scene, q, name, 1)
         e = bench_common.compare(args.compare, pov_ref, pov_ref, img)
         pov_pts.append({"label": label, "name": name, "q": q, "rmse": e["rmse"], "cpu": []})
+        print("%s: POV-Ray %s: RMSE %.4g" % (case, label, e["rmse"]), flush=True)
     for i, (label, spp, sets) in enumerate(k_sweep):
         name = "%s_kasumi_%d" % (case, i)
         _, _, img = render_k(args, scene_path, name, spp, sets, 7, 1)
         e = bench_common.compare(args.compare, k_refs[0], k_refs[1], img)
         k_pts.append({"label": label, "name": name, "spp": spp, "sets": sets,
                       "rmse": e["rmse_corrected"], "cpu": []})
+        print("%s: kasumi %s: RMSE %.4g" % (case, label, e["rmse_corrected"]), flush=True)
     ref_mean = res["ref_mean"]
 
     # Alternating timed rounds, one thread each.
