@@ -41,8 +41,9 @@ its OWN converged reference, so the time ratios do not depend on that residual.
 Error: RMSE over R, G, B of all pixels against the renderer's converged reference (kasumi: mean of
 two independent halves, its own noise removed by bench/vdb_image_compare; POV-Ray: one render at
 high settings, deterministic). Quality sweeps: POV-Ray media `samples` (method 3, intervals 1,
-jitter 0 and 1), area-light size n x n (adaptive 0 and 1, jitter); kasumi --spp with two
-render.volume.step_m values, or two light `samples` values. Every sweep point is timed in
+jitter 0 and 1) or area-light size n x n (POV `adaptive a`: a 2^a + 1 grid first, subdivided
+where its shadow tests disagree; jitter); kasumi --spp, render.volume.step_m (4 m to 0.25 m) or
+the light's `samples`. Every sweep point is timed in
 `--runs` alternating rounds (POV point, kasumi point, POV point, ...) on one thread each;
 times are CPU seconds (user + system) of the whole process, medians. Time at equal error:
 the other renderer's time at this error, interpolated linearly on its log-log error-vs-time
