@@ -130,6 +130,7 @@ void add_render_command(CLI::App& root) {
         const auto build_start = std::chrono::steady_clock::now();
         const SceneRuntime runtime(std::move(desc));
         times.build_s = seconds_since(build_start);
+        add_stage_parts(times, runtime);
         if (scene_options.verbose)
             std::fprintf(stderr, "plan:\n%s", plan_to_text(runtime.plan()).c_str());
         std::signal(SIGINT, on_signal);

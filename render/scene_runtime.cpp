@@ -2,6 +2,9 @@
 
 #include "render/gi.h"
 #include "render/gi_plan.h"
+
+#include <chrono>
+
 namespace kasumi {
 
 bool SurfaceOcclusion::occluded(const Vec3& from, const Vec3& to) const {
@@ -42,22 +45,47 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
     : m_desc(std::move(desc)),
       m_plan(make_plan(m_desc)),
       m_camera(m_desc.camera, m_desc.film.width, m_desc.film.height) {
+    using Clock = std::chrono::steady_clock;
+    auto since = [](Clock::time_point start) {
+        return std::chrono::duration<double>(Clock::now() - start).count();
+    };
     if (m_plan.surfaces) {
-        m_surfaces = surfaces ? std::move(surfaces) : std::make_shared<SurfaceScene>(m_desc.shapes);
+        const auto start = Clock::now();
+        const bool build = surfaces == nullptr;
+        m_surfaces = build ? std::make_shared<SurfaceScene>(m_desc.shapes) : std::move(surfaces);
+        if (build)
+            m_build_times.bvh_s = since(start);
     }
     if (m_plan.shadow_rays)
         m_occlusion = std::make_unique<SurfaceOcclusion>(*m_surfaces);
-    if (m_plan.shadow_maps)
+    if (m_plan.shadow_maps) {
+        const auto start = Clock::now();
         m_shadow_maps = std::make_unique<ShadowMapSet>(m_desc.lights, *m_surfaces);
-    if (m_plan.shadow_volumes)
+        m_build_times.shadow_maps_s = since(start);
+    }
+    if (m_plan.shadow_volumes) {
+        const auto start = Clock::now();
         m_shadow_volumes =
             std::make_unique<ShadowVolumeSet>(m_desc.shapes, m_desc.lights, m_surfaces->bounds());
-    if (m_plan.volume)
+        m_build_times.shadow_volumes_s = since(start);
+    }
+    if (m_plan.volume) {
+        const auto start = Clock::now();
         m_media = MediumSet(m_desc.media);
-    if (m_desc.sky)
+        m_build_times.media_s = since(start);
+    }
+    if (m_desc.sky) {
+        const auto start = Clock::now();
         m_sky = std::make_unique<SkyRenderer>(m_desc.sky, m_desc.camera.position,
                                               std::move(sky_tables));
-    m_gi = make_gi_method(*this);
+        m_build_times.sky_s = since(start);
+    }
+    {
+        const auto start = Clock::now();
+        m_gi = make_gi_method(*this);
+        if (m_gi)
+            m_build_times.gi_s = since(start);
+    }
     if (m_gi)
         add_gi_summary(m_plan, *m_gi);
 }

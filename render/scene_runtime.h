@@ -28,6 +28,17 @@ class SurfaceOcclusion final : public OcclusionQuery {
     const SurfaceScene& m_scene;
 };
 
+/// Wall seconds spent building each part of a SceneRuntime; negative: not built by it (not
+/// needed, or reused from an earlier frame of a sequence).
+struct BuildTimes {
+    double bvh_s = -1.0;             ///< Embree BVH of the shapes
+    double shadow_maps_s = -1.0;     ///< depth maps rendered from the lights
+    double shadow_volumes_s = -1.0;  ///< silhouettes extruded into volumes
+    double media_s = -1.0;           ///< the media set (majorants, overlaps)
+    double sky_s = -1.0;             ///< the sky's tables (all, or the sun-dependent ones)
+    double gi_s = -1.0;              ///< radiosity solve or photon maps
+};
+
 class SceneRuntime {
   public:
     explicit SceneRuntime(SceneDesc desc);
@@ -63,6 +74,8 @@ class SceneRuntime {
     const ShadowVolumeSet* shadow_volumes() const { return m_shadow_volumes.get(); }
     /// The render.gi method and its precomputation (render/gi.h); null for "none".
     const GiMethod* gi() const { return m_gi.get(); }
+    /// Time spent building each part in the constructor.
+    const BuildTimes& build_times() const { return m_build_times; }
 
   private:
     SceneDesc m_desc;
@@ -75,6 +88,7 @@ class SceneRuntime {
     MediumSet m_media;
     std::unique_ptr<SkyRenderer> m_sky;
     std::shared_ptr<const GiMethod> m_gi;
+    BuildTimes m_build_times;
 };
 
 }  // namespace kasumi

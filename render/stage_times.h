@@ -2,6 +2,7 @@
 /// Wall time of each stage of one render (`kasumi render -v` and the EXR metadata), and the
 /// plan's skipped stages in one line.
 #include "render/plan.h"
+#include "render/scene_runtime.h"
 
 #include <chrono>
 #include <string>
@@ -16,7 +17,15 @@ struct StageTimes {
     double build_s = -1.0;   ///< the runtime: Embree BVH, media set, shadow maps, GI, sky tables
     double render_s = -1.0;  ///< tiles: camera rays through every stage
     double write_s = -1.0;   ///< EXR and preview PNG
+    /// Parts of the stages above that ran, named "<stage>/<part>" ("load/grids", "build/bvh",
+    /// "build/sky", ...), seconds each.
+    std::vector<std::pair<std::string, double>> parts;
 };
+
+/// Adds to `times.parts` what `runtime` measured: the VDB grids read and bricked while the scene
+/// loaded ("load/grids") and each structure its constructor built ("build/bvh",
+/// "build/shadow-maps", "build/shadow-volumes", "build/media", "build/sky", "build/gi").
+void add_stage_parts(StageTimes& times, const SceneRuntime& runtime);
 
 /// Seconds elapsed on the steady clock since `start`.
 inline double seconds_since(std::chrono::steady_clock::time_point start) {

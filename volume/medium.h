@@ -59,6 +59,7 @@ struct VdbMedium {
     std::string file;           ///< the grid file, for messages and the plan
     std::string grid_name;
     std::optional<VdbTemperature> temperature;  ///< blackbody emission, if any
+    double load_s = 0.0;  ///< wall time to read the grid(s) and build the bricks (statistics)
 
     Rgb sigma_t_per_density() const { return sigma_a_per_density + sigma_s_per_density; }
 };

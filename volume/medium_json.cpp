@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 
 namespace kasumi {
@@ -88,6 +89,7 @@ VdbTemperature parse_temperature(const JsonNode& node, const std::string& medium
 }
 
 VdbMedium parse_vdb(JsonObjectReader& reader, const std::string& base_dir) {
+    const auto start = std::chrono::steady_clock::now();
     VdbMedium m;
     const JsonNode file_node = reader.required("file");
     std::filesystem::path file = file_node.as_string();
@@ -147,6 +149,7 @@ VdbMedium parse_vdb(JsonObjectReader& reader, const std::string& base_dir) {
             m.bounds_world.extend(Vec3(glm::dvec3(index_to_world * glm::dvec4(p, 1.0))));
         }
     }
+    m.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return m;
 }
 

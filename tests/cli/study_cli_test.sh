@@ -89,6 +89,10 @@ done
 for key in kasumi/time/load_s kasumi/time/build_s kasumi/time/render_s kasumi/plan/skipped; do
   grep -aq "$key" "$work/v.exr" || fail "EXR metadata lacks $key"
 done
+# The build stage's parts: the fog has media but no shapes, so media are timed and no BVH.
+grep -aq "kasumi/time/build/media_s" "$work/v.exr" || fail "EXR metadata lacks time/build/media_s"
+grep -aq "time/build/bvh" "$work/v.exr" && fail "a scene without shapes reports a BVH build"
+grep -q "time build/media" "$work/stderr" || fail "render -v lacks \"time build/media\""
 # The EXR writer adds the "kasumi/" prefix once; callers must not add it again.
 grep -aq "kasumi/kasumi/" "$work/v.exr" && fail "EXR metadata keys carry the prefix twice"
 
