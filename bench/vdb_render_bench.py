@@ -71,6 +71,9 @@ CONFIGS = [
     ("march 8 voxels + light cache",
      {"integrator": "single", "estimator": "march", "step_voxels": 8.0, "light_cache": True},
      False),
+    ("march 6 voxels + light cache",
+     {"integrator": "single", "estimator": "march", "step_voxels": 6.0, "light_cache": True},
+     False),
 ]
 
 
@@ -91,8 +94,13 @@ def kasumi_scene(vdb_path, voxel_m, res_px, spp, seed, volume):
 
 
 def render_kasumi(args, scene_path, out, spp, seed, threads):
-    t, wall, _, stats = bench_common.render_kasumi(args.kasumi, scene_path, out, spp, seed,
-                                                   threads)
+    t, wall, cpu, stats = bench_common.render_kasumi(args.kasumi, scene_path, out, spp, seed,
+                                                     threads)
+    stats["cpu_s"] = cpu
+    if stats.get("density lookups") and cpu > 0:
+        # Lookups per CPU second of the whole process (load and write included): a lower bound
+        # on the render's own rate that the machine's load does not inflate.
+        stats["lookups_per_cpu_s"] = stats["density lookups"] / cpu
     return t, wall, stats
 
 
@@ -105,8 +113,9 @@ def render_vdb(args, vdb_path, voxel_m, out, res_px, step, shadowstep, cutoff, t
            "-absorb", ",".join(["%g" % (SIGMA_A_PER_M * voxel_m)] * 3),
            "-gain", "0", "-step", "%g" % step, "-shadowstep", "%g" % shadowstep,
            "-cutoff", "%g" % cutoff, "-cpus", str(threads), "-v"]
-    p, wall, _ = run(cmd)
+    p, wall, cpu = run(cmd)
     m = re.search(r"ray-tracing.*\n.*completed in ([0-9.eE+-]+) sec", p.stdout)
+    render_vdb.cpu_s = cpu  # whole process, user + system
     return (float(m.group(1)) if m else wall), wall
 
 
@@ -129,8 +138,11 @@ def main():
     ap.add_argument("--vdb-step", default="1,3,0.005",
                     help="vdb_render step,shadowstep,cutoff (its defaults: 1,3,0.005)")
     ap.add_argument("--out", default=os.path.join(ROOT, "build", "vdb_bench"))
+    ap.add_argument("--kasumi", default="",
+                    help="kasumi binary to time (default: BUILD/apps/kasumi), e.g. an older build "
+                         "for a before/after comparison")
     args = ap.parse_args()
-    args.kasumi = os.path.join(args.build, "apps", "kasumi")
+    args.kasumi = args.kasumi or os.path.join(args.build, "apps", "kasumi")
     args.compare = os.path.join(args.build, "bench", "vdb_image_compare")
     os.makedirs(args.out, exist_ok=True)
     step, shadowstep, cutoff = (float(x) for x in args.vdb_step.split(","))
@@ -172,6 +184,22 @@ def main():
               % (res, t_vdb, e_vdb["rmse"], e_vdb["rmse_corrected"], e_vdb["ref_noise_rmse"],
                  e_vdb["ref_mean"]))
 
+        # Start-up CPU of each program (process start, reading the grid, writing a 16x16 image,
+        # median of 3 runs) is subtracted from every timed run's process CPU: "render CPU". A
+        # light cache is built inside the render, so its build stays counted.
+        tiny = ["--set", "/film/width=16", "--set", "/film/height=16"]
+        startup_k = statistics.median(
+            bench_common.render_kasumi(args.kasumi, ref_scene, os.path.join(args.out, "tiny_k.exr"),
+                                       1, 7, args.threads, tiny)[2] for _ in range(3))
+        startup_v = []
+        for _ in range(3):
+            render_vdb(args, vdb, voxel_m, os.path.join(args.out, "tiny_v.exr"), 16, step,
+                       shadowstep, cutoff, args.threads)
+            startup_v.append(render_vdb.cpu_s)
+        startup_v = statistics.median(startup_v)
+        print("res %d: start-up CPU (16x16 image): kasumi %.3f s, vdb_render %.3f s"
+              % (res, startup_k, startup_v))
+
         # Each configuration's spp ladder at the timed thread count: the smallest power of two
         # at or below vdb_render's error.
         chosen = []
@@ -189,7 +217,7 @@ def main():
             chosen.append((spp, e["rmse_corrected"], e["rmse_corrected"] <= e_vdb["rmse_corrected"]))
 
         # Alternating timed runs: vdb_render, then every configuration, repeated.
-        times_vdb, walls_vdb = [], []
+        times_vdb, walls_vdb, cpus_vdb = [], [], []
         times_k = [[] for _ in configs]
         stats_k = [[] for _ in configs]
         for _ in range(args.runs):
@@ -197,6 +225,7 @@ def main():
                               cutoff, args.threads)
             times_vdb.append(t)
             walls_vdb.append(w)
+            cpus_vdb.append(render_vdb.cpu_s)
             for ci, (name, scene, _) in enumerate(configs):
                 spp = chosen[ci][0]
                 out = os.path.join(args.out, "kasumi_%d_c%d_%d.exr" % (res, ci, spp))
@@ -208,6 +237,7 @@ def main():
              "vdb_render": {"step": step, "shadowstep": shadowstep, "cutoff": cutoff,
                             "median_s": med_vdb, "runs_s": times_vdb,
                             "median_wall_s": statistics.median(walls_vdb),
+                            "median_cpu_s": statistics.median(cpus_vdb),
                             "rmse": e_vdb["rmse_corrected"]},
              "ref_mean": e_vdb["ref_mean"], "ref_noise_rmse": e_vdb["ref_noise_rmse"],
              "kasumi": []}
@@ -215,25 +245,51 @@ def main():
             spp, rmse, reached = chosen[ci]
             med = statistics.median(times_k[ci])
             s_ = stats_k[ci][len(stats_k[ci]) // 2]
+            med_cpu = statistics.median(x["cpu_s"] for x in stats_k[ci])
+            med_cpu_vdb = statistics.median(cpus_vdb)
+            render_cpu_k = max(med_cpu - startup_k, 1e-9)
+            render_cpu_v = max(med_cpu_vdb - startup_v, 1e-9)
             entry = {"config": name, "spp": spp, "rmse": rmse, "reached_vdb_error": reached,
                      "median_s": med, "runs_s": times_k[ci],
                      "speedup_at_equal_or_lower_error": med_vdb / med if reached else None,
                      "density_lookups": s_.get("density lookups"),
                      "lookups_per_s_per_core": s_.get("lookups/s/core"),
+                     "median_cpu_s": med_cpu,
+                     "startup_cpu_s": startup_k, "vdb_startup_cpu_s": startup_v,
+                     "render_cpu_s": render_cpu_k, "vdb_render_cpu_s": render_cpu_v,
+                     "render_cpu_speedup": render_cpu_v / render_cpu_k if reached else None,
+                     "lookups_per_render_cpu_s": (s_.get("density lookups") or 0) / render_cpu_k,
+                     "cpu_speedup": med_cpu_vdb / med_cpu if reached and med_cpu > 0 else None,
+                     "lookups_per_cpu_s": statistics.median(
+                         x.get("lookups_per_cpu_s", 0.0) for x in stats_k[ci]),
                      "camera_rays_per_s": s_.get("camera rays/s"),
                      "all_rays_per_s": s_.get("all rays/s")}
             if unbiased and rmse > 0:
                 # RMSE^2 ~ 1/spp for an unbiased estimator: time at exactly vdb_render's error.
                 entry["seconds_at_vdb_rmse"] = med * (rmse / e_vdb["rmse_corrected"]) ** 2
                 entry["speedup_at_equal_error"] = med_vdb / entry["seconds_at_vdb_rmse"]
+                entry["cpu_speedup_at_equal_error"] = (
+                    med_cpu_vdb / (med_cpu * (rmse / e_vdb["rmse_corrected"]) ** 2))
+                entry["render_cpu_speedup_at_equal_error"] = (
+                    render_cpu_v / (render_cpu_k * (rmse / e_vdb["rmse_corrected"]) ** 2))
             r["kasumi"].append(entry)
             print("res %d: median vdb_render %.3f s (RMSE %.4g) vs kasumi [%s] %.3f s at %d spp "
-                  "(RMSE %.4g%s): %s; %.3g lookups/s/core, %.3g camera rays/s, %.3g rays/s" %
+                  "(RMSE %.4g%s): %s; CPU %.3f s vs %.3f s: %s; %.3g lookups/s/core (wall), "
+                  "%.3g lookups per CPU s, %.3g camera rays/s, %.3g rays/s" %
                   (res, med_vdb, e_vdb["rmse_corrected"], name, med, spp, rmse,
                    "" if reached else ", vdb_render's error NOT reached",
                    ("%.1fx" % (med_vdb / med)) if reached else "n/a",
-                   s_.get("lookups/s/core", 0), s_.get("camera rays/s", 0),
-                   s_.get("all rays/s", 0)))
+                   med_cpu_vdb, med_cpu,
+                   ("%.1fx" % (med_cpu_vdb / med_cpu)) if reached and med_cpu > 0 else "n/a",
+                   s_.get("lookups/s/core", 0), entry["lookups_per_cpu_s"],
+                   s_.get("camera rays/s", 0), s_.get("all rays/s", 0)))
+            print("res %d:   render CPU (start-up removed) vdb_render %.3f s vs kasumi [%s] %.3f s:"
+                  " %s; %.3g lookups per render CPU s (%.0f ns per lookup all-in)"
+                  % (res, render_cpu_v, name, render_cpu_k,
+                     ("%.1fx" % (render_cpu_v / render_cpu_k)) if reached else "n/a",
+                     entry["lookups_per_render_cpu_s"],
+                     1e9 / entry["lookups_per_render_cpu_s"] if entry["lookups_per_render_cpu_s"]
+                     else 0))
         results.append(r)
     load = os.getloadavg()
     print("load average at end: %.2f %.2f %.2f" % load)
