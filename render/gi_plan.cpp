@@ -61,8 +61,11 @@ PlanStage gi_plan_stage(const SceneDesc& scene) {
                    << " emissive shapes as sources; Gouraud-interpolated, Phong highlights and "
                       "Whitted rays ("
                    << c.specular << " mirrors/dielectrics) on top";
+            reason << "; patches are one-sided: the front (the winding side) exchanges light, "
+                      "the backs of quads and open meshes get direct light only";
             if (c.diffuse_spheres > 0)
-                reason << "; " << c.diffuse_spheres << " Phong spheres: direct light only";
+                reason << "; " << c.diffuse_spheres
+                       << " Phong spheres: not patches, direct light only (they still block)";
             reason << "; " << media_role(scene)
                    << (scene.media.empty() ? "" : " along eye rays, not in the exchange");
             if (!s.cache.empty())
@@ -76,9 +79,18 @@ PlanStage gi_plan_stage(const SceneDesc& scene) {
                    << c.emissive << " emissive, next-event estimation with MIS); "
                    << media_role(scene);
             return {"global-illumination", true, reason.str()};
-        case GiMode::Photons:
-            reason << "photon maps";
+        case GiMode::Photons: {
+            const PhotonSettings& p = r.photons;
+            reason << "photon maps: " << p.global_count << " global, " << p.caustic_count
+                   << " caustic, " << (scene.media.empty() ? 0 : p.volume_count)
+                   << " volume photons emitted; k " << p.k << ", " << p.final_gather_samples
+                   << " final-gather rays; shadow photons ";
+            if (p.shadow_count > 0)
+                reason << p.shadow_count << " (k " << p.shadow_k << ")";
+            else
+                reason << "off";
             return {"global-illumination", true, reason.str()};
+        }
     }
     return {"global-illumination", false, ""};
 }
