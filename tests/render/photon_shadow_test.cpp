@@ -145,6 +145,27 @@ TEST(ShadowPhotons, DecisionsAreWrongOnlyWithinTheNeighbourRadiusOfTheShadowEdge
                 lit_decided, lit_far, umbra_decided, umbra_far, decided_near, wrong_near);
 }
 
+TEST(ShadowPhotons, PhotonsOnTheOtherSideOfAThinSurfaceDoNotCount) {
+    // The occluder is one quad: its top holds direct photons at the very points of its underside.
+    // Seen from below (normal -y) none arrived on that side, so no decision is made (the light is
+    // behind the surface anyway); seen from above, Lit. Counting both sides would call the
+    // underside Lit.
+    const auto scene = runtime_from_text(occluder_scene(0.5f, R"("gi": "none")"));
+    const PhotonMap map = shadow_map(*scene, 200000);
+    PhotonQueryScratch scratch;
+    for (float x : {-0.3f, 0.0f, 0.2f}) {
+        KnownVisibility below = KnownVisibility::Lit, above = KnownVisibility::Unknown;
+        classify_shadow_photons(map, Vec3(x, 1.0f, 0.1f), Vec3(0, -1, 0), 16, 0.25f, 1, scratch,
+                                &below);
+        classify_shadow_photons(map, Vec3(x, 1.0f, 0.1f), Vec3(0, 1, 0), 16, 0.25f, 1, scratch,
+                                &above);
+        EXPECT_EQ(below, KnownVisibility::Unknown) << x;
+        EXPECT_EQ(above, KnownVisibility::Lit) << x;
+    }
+    // Off by default: no shadow map unless render.photons.shadow_count is set.
+    EXPECT_EQ(PhotonSettings{}.shadow_count, 0u);
+}
+
 RenderOptions quiet() {
     RenderOptions o;
     o.threads = 0;
