@@ -2,6 +2,7 @@
 
 #include "render/gi.h"
 #include "render/photon_gi.h"
+#include "render/sky_shafts.h"
 #include "render/whitted.h"
 #include "surface/emitter_hit.h"
 
@@ -202,8 +203,10 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
         sample.transmittance = v.transmittance;
     }
     sample.radiance = sample.volume + sample.transmittance * sample.surface;
-    if (scene.sky() != nullptr)
+    if (scene.sky() != nullptr) {
         scene.sky()->apply(ray, t_end, rng, sample);
+        apply_sky_shafts(scene, ray, t_end, rng, sample, counters);
+    }
     return sample;
 }
 

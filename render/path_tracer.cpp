@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "render/gi_phong.h"
 #include "render/integrator.h"
+#include "render/sky_environment.h"
 #include "surface/fresnel.h"
 #include "volume/transmittance.h"
 
@@ -291,6 +292,13 @@ Rgb PathTracer::trace(const SceneRuntime& scene, const Ray& camera_ray, const Su
         ray = Ray{offset_ray_origin(hit, direction), direction, 0.0f, kInfinity};
         const std::optional<SurfaceHit> next = scene.surfaces()->intersect(ray);
         const float t_end = next ? next->t : kInfinity;
+        if (scene.sky() != nullptr && next) {
+            // The air in front of the next surface (open rays: the sky below holds it).
+            Rgb l_air(0.0f), t_air(1.0f);
+            scene.sky()->aerial_perspective(ray, t_end, rng, l_air, t_air);
+            radiance += beta * l_air;
+            beta *= t_air;
+        }
         radiance += beta * lights_hit(scene, ray, t_end, specular, bsdf_pdf, rng);
         if (scene.plan().volume) {
             Ray segment = ray;
@@ -300,7 +308,11 @@ Rgb PathTracer::trace(const SceneRuntime& scene, const Ray& camera_ray, const Su
             beta *= v.transmittance;
         }
         if (!next) {
-            radiance += beta * desc.background;
+            // The environment: the sky (or the background). After a Phong bounce the sun's
+            // disc is left out, since next-event estimation already sampled the sun as a
+            // directional light (counting it here too would double it); after a mirror or
+            // glass bounce no light was sampled, so the disc is seen.
+            radiance += beta * escaped_radiance(scene, ray, specular, rng);
             break;
         }
         hit = *next;

@@ -140,6 +140,31 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
                "invisible)"});
 }
 
+/// Light shafts in the atmosphere (render/sky_shafts.h).
+PlanStage sky_shafts_plan_stage(const SceneDesc& scene, const Plan& plan) {
+    const SkySettings& sky = scene.sky->settings;
+    if (!sky.shafts)
+        return {"sky-shafts", false,
+                "render.sky.shafts is false: the air is lit by the sun everywhere (no light "
+                "shafts)"};
+    std::vector<std::string> casters;
+    if (plan.shadow_rays)
+        casters.push_back("surfaces (one shadow ray per node)");
+    if (plan.volume)
+        casters.push_back(std::string("media (") + estimator_name(scene.render.volume.estimator) +
+                          " transmittance toward the sun)");
+    if (casters.empty())
+        return {"sky-shafts", false,
+                "render.sky.shafts is true but nothing can shadow the air (no shapes casting "
+                "shadows, no media)"};
+    return {"sky-shafts", true,
+            "single-scattered sunlight of the air hidden by " + casters.front() +
+                (casters.size() > 1 ? " and " + casters.back() : std::string()) +
+                " subtracted over the first " + format_g(sky.shaft_distance_m) +
+                " m of camera rays, " + std::to_string(sky.shaft_samples) +
+                " jittered strata; multiply scattered sky light unshadowed"};
+}
+
 }  // namespace
 
 Plan make_plan(const SceneDesc& scene) {
@@ -220,6 +245,8 @@ Plan make_plan(const SceneDesc& scene) {
                                                                   : "black background"});
     for (const SkyPlanStage& s : sky_plan_stages(scene.sky.get()))
         plan.stages.push_back({s.name, s.enabled, s.reason});
+    if (scene.sky != nullptr)
+        plan.stages.push_back(sky_shafts_plan_stage(scene, plan));
     plan.stages.push_back(quality_plan_stage(scene));
     return plan;
 }

@@ -2,6 +2,7 @@
 
 #include "render/gi.h"
 #include "render/integrator.h"
+#include "render/sky_environment.h"
 #include "surface/emitter_hit.h"
 #include "surface/fresnel.h"
 
@@ -99,14 +100,19 @@ Rgb shade_hit(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit, 
 
 Rgb trace_whitted_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
                       RenderCounters& counters, int depth, float weight) {
-    Rgb surface = scene.desc().background;
+    Rgb surface(0.0f);
     float t_end = ray.t_max;
+    bool hit_surface = false;
     if (const SurfaceScene* surfaces = scene.surfaces()) {
         if (const auto hit = surfaces->intersect(ray)) {
             t_end = hit->t;
+            hit_surface = true;
             surface = shade_hit(scene, ray, *hit, rng, counters, depth, weight);
         }
     }
+    // A ray that leaves the scene sees the sky with the sun's disc (or the background).
+    if (!hit_surface)
+        surface = escaped_radiance(scene, ray, true, rng);
     if (scene.plan().visible_lights) {
         // A mirror or glass shows the area lights in front of the next surface.
         if (const auto light = intersect_emitters(
@@ -115,12 +121,14 @@ Rgb trace_whitted_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
             surface = light->radiance;
         }
     }
-    if (!scene.plan().volume)
-        return surface;
-    Ray segment = ray;
-    segment.t_max = t_end;
-    const VolumeResult v = trace_volume_segment(scene, segment, rng, counters);
-    return v.radiance + v.transmittance * surface;
+    if (scene.plan().volume) {
+        Ray segment = ray;
+        segment.t_max = t_end;
+        const VolumeResult v = trace_volume_segment(scene, segment, rng, counters);
+        surface = v.radiance + v.transmittance * surface;
+    }
+    // The air in front of what the ray reached (the sky already holds the air of open rays).
+    return through_air(scene, ray, t_end, surface, rng);
 }
 
 }  // namespace kasumi

@@ -67,6 +67,13 @@ Rgb SkyRenderer::background(const Ray& ray, Pcg32& rng) const {
     return m_sky->to_rgb(l);
 }
 
+Rgb SkyRenderer::environment(const Ray& ray, bool sun_disc, Pcg32& rng) const {
+    const DVec3 origin(ray.origin);
+    const DVec3 p = glm::length(origin - m_camera) <= kEnvironmentNearM ? m_camera : origin;
+    return m_sky->to_rgb(
+        radiance_bands(p, glm::normalize(DVec3(ray.direction)), 1e30, sun_disc, rng, nullptr));
+}
+
 Rgb SkyRenderer::transmittance_rgb(const Bands& t) const {
     const Rgb v = m_sky->to_rgb(t);
     return Rgb(m_white.r > 0 ? v.r / m_white.r : 1.0f, m_white.g > 0 ? v.g / m_white.g : 1.0f,
@@ -76,8 +83,17 @@ Rgb SkyRenderer::transmittance_rgb(const Bands& t) const {
 void SkyRenderer::aerial_perspective(const Ray& ray, float t, Pcg32& rng, Rgb& radiance,
                                      Rgb& transmittance_out) const {
     Bands tb{};
-    const Bands l = radiance_bands(DVec3(ray.origin), glm::normalize(DVec3(ray.direction)),
-                                   static_cast<double>(t), false, rng, &tb);
+    const DVec3 p(ray.origin), d = glm::normalize(DVec3(ray.direction));
+    // A surface ends the segment, so the planet's ground is not seen even where the scene's
+    // ground coincides with it: a quad at y = 0 touches the planet at the origin, and a hit
+    // rounded to float can lie at or past the planet's surface (which would add the ground's
+    // radiance and make the air opaque). Stop just short of the planet there.
+    double t_air = static_cast<double>(t);
+    double t0 = 0.0, t1 = 0.0;
+    bool ground = false;
+    if (atmosphere_segment(m_sky->atmosphere, p, d, t0, t1, ground) && ground)
+        t_air = std::min(t_air, t1 * (1.0 - 1e-6));
+    const Bands l = radiance_bands(p, d, t_air, false, rng, &tb);
     radiance = m_sky->to_rgb(l);
     transmittance_out = glm::clamp(transmittance_rgb(tb), Rgb(0.0f), Rgb(1.0f));
 }

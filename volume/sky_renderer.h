@@ -34,6 +34,14 @@ class SkyRenderer {
 
     /// Radiance of a ray that meets no surface: sky, ground of the planet and the sun's disc.
     Rgb background(const Ray& ray, Pcg32& rng) const;
+    /// Radiance of the sky arriving along a secondary ray that leaves the scene (Whitted
+    /// reflections and refractions, path-traced bounces): as background(), but seen from the
+    /// camera when ray.origin lies within kEnvironmentNearM of it (fast mode: the sky-view
+    /// table, so a mirror shows exactly the sky the camera sees; the air changes over
+    /// kilometres). The sun's disc only when `sun_disc` (the path tracer leaves it out after
+    /// diffuse bounces: it samples the sun as a directional light).
+    Rgb environment(const Ray& ray, bool sun_disc, Pcg32& rng) const;
+    static constexpr double kEnvironmentNearM = 100.0;
     /// In-scattered radiance and transmittance of the air over [0, t] of `ray`.
     void aerial_perspective(const Ray& ray, float t, Pcg32& rng, Rgb& radiance,
                             Rgb& transmittance) const;

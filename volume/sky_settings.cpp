@@ -33,6 +33,15 @@ void parse_sky_render_keys(JsonObjectReader& render, SkySettings& sky) {
             sky.view_steps = read_int(*s, 4, 4096);
         if (const auto s = reader.optional("sun_steps"))
             sky.sun_steps = read_int(*s, 4, 4096);
+        if (const auto s = reader.optional("shafts"))
+            sky.shafts = s->as_bool();
+        if (const auto s = reader.optional("shaft_distance_m")) {
+            sky.shaft_distance_m = s->as_double();
+            if (!(sky.shaft_distance_m > 0.0 && sky.shaft_distance_m <= 1e6))
+                s->fail("must be a distance in (0, 1e6] m");
+        }
+        if (const auto s = reader.optional("shaft_samples"))
+            sky.shaft_samples = read_int(*s, 1, 1024);
         reader.finish();
     }
     if (const auto v = render.optional("spectral")) {

@@ -22,6 +22,12 @@ struct SkySettings {
     int spectral_bands = 0;
     /// RGB mode wavelengths of the R, G, B channels, nm (default 680, 550, 440).
     std::vector<double> rgb_wavelengths_nm{680.0, 550.0, 440.0};
+    /// Light shafts (render/sky_shafts.h): surfaces and media shadow the sun's single
+    /// scattering in the air over the first `shaft_distance_m` of every camera ray, sampled at
+    /// `shaft_samples` jittered strata.
+    bool shafts = false;
+    double shaft_distance_m = 200.0;
+    int shaft_samples = 16;
 };
 
 /// Reads the keys "sky", "spectral" and "wavelengths_nm" of a `render` object into `sky`.
