@@ -3,6 +3,8 @@
 #include "volume/atmosphere_json.h"
 #include "volume/sky_reference.h"
 
+#include <tbb/parallel_for.h>
+
 namespace kasumi {
 
 SkyRenderer::SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world,
@@ -34,9 +36,14 @@ Bands SkyRenderer::radiance_bands(const DVec3& p, const DVec3& d, double t_max, 
     const bool from_camera = glm::length(p - m_camera) < 1e-3;
     if (from_camera && t_max >= 1e29) {
         m_luts->sky_view(sky, d, radiance);
+        // The transmittance is needed only for the caller or behind the sun's disc.
+        const bool need_t = transmittance_out != nullptr ||
+                            (sun_disc && glm::dot(d, sky.sun_direction) >= sky.sun_cos_radius);
         double t0 = 0.0, t1 = 0.0;
         bool ground = false;
-        if (!atmosphere_segment(sky.atmosphere, p, d, t0, t1, ground)) {
+        if (!need_t) {
+            // t stays 0: the disc term below adds nothing.
+        } else if (!atmosphere_segment(sky.atmosphere, p, d, t0, t1, ground)) {
             for (int i = 0; i < sky.bands(); ++i)
                 t[i] = 1.0;
         } else if (!ground) {
@@ -137,7 +144,7 @@ void SkyRenderer::build_irradiance() {
     std::vector<DVec3> dirs(radiance.size());
     std::vector<double> solid_angle(radiance.size());
     const DVec3 p(0.0, 1.0, 0.0);
-    for (int j = 0; j < kH; ++j) {
+    tbb::parallel_for(0, kH, [&](int j) {
         const double c0 = 1.0 - 2.0 * j / kH, c1 = 1.0 - 2.0 * (j + 1) / kH;
         const double cos_t = 0.5 * (c0 + c1);
         const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
@@ -149,7 +156,7 @@ void SkyRenderer::build_irradiance() {
             Pcg32 rng(0x5eedULL + k, 0xa11ULL);
             radiance[k] = m_sky->to_rgb(radiance_bands(p, dirs[k], 1e30, false, rng, nullptr));
         }
-    }
+    });
     m_irradiance.assign(static_cast<size_t>(kIrrH * kIrrW), Rgb(0.0f));
     for (int j = 0; j < kIrrH; ++j) {
         const double elev = -0.5 * kPiD + kPiD * j / (kIrrH - 1);

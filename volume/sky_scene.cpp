@@ -110,9 +110,9 @@ std::vector<SkyPlanStage> sky_plan_stages(const SkyScene* sky) {
     out.push_back({"atmosphere", true, describe_sky(*sky)});
     out.push_back(
         {"sky-luts", fast,
-         fast ? "transmittance 256x64 and multiple scattering 32x32 (atmosphere only, built "
-                "once), sky view 192x108 for this camera altitude and sun (Hillaire 2020); "
-                "aerial perspective marched per pixel with the tables"
+         fast ? "transmittance 256x64 and multiple scattering 128x32 by 4 iterated orders "
+                "(atmosphere only, built once), sky view 192x108 for this camera altitude and "
+                "sun (Hillaire 2020); aerial perspective from the tables per pixel"
               : "render.sky.mode is \"reference\": no tables"});
     out.push_back({"sky-reference", !fast,
                    !fast ? "ray marching in double precision, " + std::to_string(s.view_steps) +
