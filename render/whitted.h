@@ -26,8 +26,10 @@ Rgb shade_hit(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit, 
               RenderCounters& counters, int depth = 0, float weight = 1.0f);
 
 /// Radiance (cd/m²) arriving at ray.origin along -ray.direction through the scene: the first
-/// surface's shade_hit (else the background), behind the media between (the volume stage over
-/// [ray.t_min, hit)). `depth` and `weight` as for shade_hit. Never throws.
+/// surface's shade_hit (else the sky with the sun's disc when the scene has an atmosphere, or
+/// the background), behind the media between (the volume stage over [ray.t_min, hit)) and the
+/// air's aerial perspective (render/sky_environment.h). `depth` and `weight` as for shade_hit.
+/// Never throws.
 Rgb trace_whitted_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
                       RenderCounters& counters, int depth, float weight);
 
