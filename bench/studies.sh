@@ -58,6 +58,13 @@ study cloud-transmittance data/scenes/cloud.json --repeats 5 \
   --probe transmittance --from -800,560,0 --to 800,560,0 --reference-spp 1000000 \
   --vary /render/volume/estimator=march,delta,ratio,residual-ratio --vary spp=100,1000,10000
 
+# Sky: fast tables against the reference ray march x RGB or N wavelengths, against the
+# reference march at 32 wavelengths. Times are render_image only: the fast mode's tables are
+# built when the scene loads (bench/sky_bench.sh times them).
+study sky data/scenes/sky.json --res 48x27 --repeats 3 \
+  --vary /render/sky/mode=fast,reference --vary /render/spectral=rgb,8,16 \
+  --reference-set /render/spectral=32 --reference-spp 16
+
 # Soft shadows: shadow samples of both area lights x spp.
 study soft-shadows data/scenes/soft_shadows.json --res 96x54 --repeats 3 \
   --vary /lights/0/samples+/lights/1/samples=1,4,16 --vary spp=1,4,16 --reference-spp 256
