@@ -87,28 +87,29 @@ ReuseCounts& ReuseCounts::operator+=(const ReuseCounts& o) {
 }
 
 std::string reuse_text(const ReuseCounts& c) {
-    std::vector<std::string> reused, built;
-    if (c.bvh_reused)
-        reused.push_back("bvh");
-    if (c.sky_tables_reused)
-        reused.push_back("sky tables");
-    append(reused, c.meshes_reused, "mesh", "meshes");
-    append(reused, c.ies_reused, "IES profile", "IES profiles");
-    append(reused, c.grids_reused, "grid", "grids");
-    append(reused, c.shapes_reused - c.meshes_reused, "other shape", "other shapes");
-    append(reused, c.lights_reused - c.ies_reused, "other light", "other lights");
-    append(reused, c.media_reused - c.grids_reused, "other medium", "other media");
-    if (c.bvh_built)
-        built.push_back("bvh");
-    if (c.sky_tables_built)
-        built.push_back("sky tables");
-    append(built, c.meshes_loaded, "mesh", "meshes");
-    append(built, c.ies_loaded, "IES profile", "IES profiles");
-    append(built, c.grids_loaded, "grid", "grids");
-    append(built, c.shapes_parsed - c.meshes_loaded, "other shape", "other shapes");
-    append(built, c.lights_parsed - c.ies_loaded, "other light", "other lights");
-    append(built, c.media_parsed - c.grids_loaded, "other medium", "other media");
-    return "reused " + join(reused) + "; built " + join(built);
+    // One side of the log line: the whole structures, then the parts that carry a file (meshes,
+    // IES profiles, grids) and the rest of each kind.
+    auto side = [](uint64_t bvh, uint64_t sky_tables, uint64_t meshes, uint64_t ies, uint64_t grids,
+                   uint64_t shapes, uint64_t lights, uint64_t media) {
+        std::vector<std::string> items;
+        if (bvh > 0)
+            items.push_back("bvh");
+        if (sky_tables > 0)
+            items.push_back("sky tables");
+        append(items, meshes, "mesh", "meshes");
+        append(items, ies, "IES profile", "IES profiles");
+        append(items, grids, "grid", "grids");
+        append(items, shapes - meshes, "other shape", "other shapes");
+        append(items, lights - ies, "other light", "other lights");
+        append(items, media - grids, "other medium", "other media");
+        return join(items);
+    };
+    return "reused " +
+           side(c.bvh_reused, c.sky_tables_reused, c.meshes_reused, c.ies_reused, c.grids_reused,
+                c.shapes_reused, c.lights_reused, c.media_reused) +
+           "; built " +
+           side(c.bvh_built, c.sky_tables_built, c.meshes_loaded, c.ies_loaded, c.grids_loaded,
+                c.shapes_parsed, c.lights_parsed, c.media_parsed);
 }
 
 Shape SequenceCache::shape(const JsonNode& node, const std::map<std::string, uint32_t>& materials,
