@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace kasumi {
 namespace {
 
@@ -38,6 +40,38 @@ TEST(Spectrum, PlanckPeakFollowsWiensLaw) {
     const double peak_nm = 2.897771955e-3 / t * 1e9;
     EXPECT_GT(planck_radiance(peak_nm, t), planck_radiance(peak_nm - 5.0, t));
     EXPECT_GT(planck_radiance(peak_nm, t), planck_radiance(peak_nm + 5.0, t));
+}
+
+TEST(Spectrum, PlanckAt2856KHasTheChromaticityOfCieIlluminantA) {
+    // CIE illuminant A is by definition a Planckian radiator at 2856 K (c2 = 1.4388e-2 m K;
+    // CODATA 2018 hc/k = 1.438777e-2 differs by 0.05 K here). Its chromaticity is published as
+    // x = 0.44757, y = 0.40745 (CIE 15:2004, Table T.3; ISO 11664-2). The 5 nm CMF table over
+    // 360-830 nm reproduces it to ~4e-5; a wrong row of the table, a swapped CMF column or a
+    // wrong c2 = hc/k moves it by more than the 2e-4 allowed.
+    glm::dvec3 xyz(0.0);
+    for (int i = 0; i < kCieSamples; ++i) {
+        const double b = planck_radiance(kCieFirstNm + kCieStepNm * i, 2856.0);
+        xyz += b * glm::dvec3(kCie1931[i][0], kCie1931[i][1], kCie1931[i][2]);
+    }
+    const double sum = xyz.x + xyz.y + xyz.z;
+    EXPECT_NEAR(xyz.x / sum, 0.44757, 2e-4);
+    EXPECT_NEAR(xyz.y / sum, 0.40745, 2e-4);
+}
+
+TEST(Spectrum, PlanckIntegratesToStefanBoltzmann) {
+    // π ∫ B(λ, T) dλ = σ T⁴ with σ = 5.670374419e-8 W m⁻² K⁻⁴ (CODATA 2018, exact from h, c, k).
+    // Simpson's rule in ln λ from 10 nm to 1 mm (outside, < 1e-9 of the total at 5772 K).
+    const double t = 5772.0;
+    const int n = 20000;
+    const double a = std::log(10.0), b = std::log(1e6), h = (b - a) / n;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        const double nm = std::exp(a + h * i);
+        const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+        sum += w * planck_radiance(nm, t) * nm;  // dλ = λ d(ln λ), per nm
+    }
+    const double exitance = kPiD * sum * h / 3.0;
+    EXPECT_NEAR(exitance, 5.670374419e-8 * std::pow(t, 4), 1e-6 * 5.670374419e-8 * std::pow(t, 4));
 }
 
 TEST(Spectrum, BinsCoverTheVisibleRange) {

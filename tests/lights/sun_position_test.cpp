@@ -25,6 +25,26 @@ TEST(SolarPosition, DeclinationAndEquationOfTimeOfMeeusExamples) {
     EXPECT_NEAR(s.equation_of_time_min, 13.712, 0.01);
 }
 
+TEST(SolarPosition, NrelSpaReferenceExample) {
+    // Reda & Andreas, "Solar Position Algorithm for Solar Radiation Applications" (NREL/TP-560-
+    // 34302, 2004/2008), the example of its Table A5.1/A5.2 and of spa_tester.c: 2003 October 17,
+    // 12:30:30 local time at UTC-7, latitude 39.742476°, longitude -105.1786°, 1830.14 m, 820 mbar,
+    // 11 °C. Published: JD 2452930.312847, declination -9.31434° (geocentric), observer hour angle
+    // 11.105902°, topocentric zenith angle 50.111622° (refracted) and azimuth 194.340241°.
+    // NOAA's low-accuracy method is good to ~0.01° (1800-2100); its refraction is for sea level
+    // (0.0193° here, SPA's 0.0163° at 820 mbar) and it has no parallax (0.0019°): both move the
+    // zenith by less than the 0.01° allowed. A swapped azimuth branch, a sign error in the hour
+    // angle or a wrong time zone moves these by degrees.
+    const auto when = parse_iso8601("2003-10-17T12:30:30-07:00");
+    ASSERT_TRUE(when.has_value());
+    EXPECT_NEAR(when->day, 2452930.312847, 1e-6);
+    const SolarPosition s = solar_position(39.742476, -105.1786, *when);
+    EXPECT_NEAR(s.declination_deg, -9.31434, 0.005);
+    EXPECT_NEAR(s.hour_angle_deg, 11.105902, 0.01);
+    EXPECT_NEAR(90.0 - s.apparent_elevation_deg, 50.111622, 0.01);
+    EXPECT_NEAR(s.azimuth_deg, 194.340241, 0.01);
+}
+
 TEST(SolarPosition, SolarNoonElevationAndAzimuth) {
     // At true solar noon (UTC 12:00 - 4 min/deg east longitude - equation of time) the sun
     // stands on the meridian: hour angle 0, elevation 90 - |lat - dec|, azimuth 180 north of the
