@@ -76,6 +76,39 @@ TEST(FormFactorTest, PointToRectangleIsHowellB3) {
     }
 }
 
+/// Howell's catalogue, section B, "plane element dA1 to plane parallel circular disk A2" (the
+/// normal of dA1 through the centre, and offset; also Siegel & Howell, appendix C): a disk of
+/// radius r at height h, the element's normal a distance a from the disk's axis; H = h/a,
+/// R = r/a, Z = 1 + H² + R²:  F = 1/2 [1 − (1 + H² − R²) / sqrt(Z² − 4R²)].
+/// On the axis (a → 0) it is r² / (r² + h²).
+double howell_parallel_disk(double a, double h, double r) {
+    if (a == 0.0)
+        return r * r / (r * r + h * h);
+    const double hh = h / a, rr = r / a, z = 1.0 + hh * hh + rr * rr;
+    return 0.5 * (1.0 - (1.0 + hh * hh - rr * rr) / std::sqrt(z * z - 4.0 * rr * rr));
+}
+
+TEST(FormFactorTest, PointToParallelDiskMatchesHowellsClosedForms) {
+    // Lambert's formula is additive over a fan of thin triangles: the sum over a 4096-gon
+    // inscribed in the disk must equal the disk's closed form up to the area the polygon misses,
+    // (2π/N)²/6 ≈ 4e-7 relative. The element at the origin faces +z; the disk at height h faces
+    // down (clockwise seen from above), its centre offset by a along x. Cases on the axis, under
+    // the disk, beside it.
+    const int n = 4096;
+    for (const auto& [a, h, r] :
+         {std::array<double, 3>{0, 1, 1}, {0.5, 1, 1}, {2, 1, 1}, {3, 2, 1.5}, {0.2, 0.1, 5}}) {
+        double f = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double t0 = 2.0 * kPi * i / n, t1 = 2.0 * kPi * (i + 1) / n;
+            const DVec3 fan[3] = {DVec3(a, 0, h), DVec3(a + r * std::cos(t1), r * std::sin(t1), h),
+                                  DVec3(a + r * std::cos(t0), r * std::sin(t0), h)};
+            f += point_to_polygon_form_factor(DVec3(0), DVec3(0, 0, 1), fan, 3);
+        }
+        const double expected = howell_parallel_disk(a, h, r);
+        EXPECT_NEAR(f, expected, 2e-6 * expected) << a << " " << h << " " << r;
+    }
+}
+
 TEST(FormFactorTest, PointBehindOrTangentPolygonSeesNothing) {
     // The rectangle faces +z (counter-clockwise about +z): a point below sees its back.
     const DVec3 rect[4] = {DVec3(0, 0, 1), DVec3(1, 0, 1), DVec3(1, 1, 1), DVec3(0, 1, 1)};
