@@ -3,6 +3,7 @@
 #include "core/cie_1931.h"
 #include "core/spectrum.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace kasumi {
@@ -31,7 +32,20 @@ BlackbodyTable::BlackbodyTable() {
         m_log_y[static_cast<size_t>(i)] = y > 0.0f ? std::log(y) : -1e30f;
         m_colour[static_cast<size_t>(i)] = y > 0.0f ? b / y : Rgb(0.0f);
     }
-    m_last = blackbody_rec709(kMaxK);
+    // Above kMaxK: nodes uniform in u = kMaxK / T in [0, 1]. In the visible, c2 / (lambda T) is
+    // below 0.9 there and falls with u, so B(lambda, T) / T = (2 h c² / lambda⁵) / (T expm1(x))
+    // tends to the Rayleigh-Jeans 2 c k / lambda⁴ as u -> 0 and is smooth in u: Y / T and the
+    // colour interpolate linearly to ~1e-6. u = 0 (T -> infinity) is taken at u = 1e-7.
+    m_hot_y_over_t.resize(kHotNodes);
+    m_hot_colour.resize(kHotNodes);
+    for (int j = 0; j < kHotNodes; ++j) {
+        const double u = std::max(1e-7, static_cast<double>(j) / (kHotNodes - 1));
+        const double t = kMaxK / u;
+        const Rgb b = blackbody_rec709(t);
+        const double y = luminance(b);
+        m_hot_y_over_t[static_cast<size_t>(j)] = static_cast<float>(y / t);
+        m_hot_colour[static_cast<size_t>(j)] = b / static_cast<float>(y);
+    }
 }
 
 Rgb BlackbodyTable::operator()(float temperature_k) const {
@@ -40,8 +54,14 @@ Rgb BlackbodyTable::operator()(float temperature_k) const {
     const double x = temperature_k / kStepK;
     const size_t last = m_log_y.size() - 1;
     if (x >= static_cast<double>(last)) {
-        const float ratio = static_cast<float>(temperature_k / kMaxK);
-        return m_last * (ratio * ratio * ratio * ratio);
+        // Not Stefan-Boltzmann's T⁴: that is the total over all wavelengths, whereas the visible
+        // part of a very hot body grows only like T (Rayleigh-Jeans).
+        const double u = kMaxK / static_cast<double>(temperature_k) * (kHotNodes - 1);
+        const size_t j = std::min(static_cast<size_t>(u), static_cast<size_t>(kHotNodes - 2));
+        const float f = static_cast<float>(u - static_cast<double>(j));
+        const float y_over_t = m_hot_y_over_t[j] + f * (m_hot_y_over_t[j + 1] - m_hot_y_over_t[j]);
+        const Rgb colour = m_hot_colour[j] + f * (m_hot_colour[j + 1] - m_hot_colour[j]);
+        return (y_over_t * temperature_k) * colour;
     }
     const size_t i = static_cast<size_t>(x);
     const float f = static_cast<float>(x - static_cast<double>(i));

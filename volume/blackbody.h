@@ -21,20 +21,23 @@ Rgb blackbody_rec709(double temperature_k);
 /// blackbody_rec709 tabulated every kStepK kelvin up to kMaxK (the hot-loop form). Between
 /// entries the luminance is interpolated in log (log Y is nearly linear in T over a step: Wien's
 /// exp(-c2 / lambda T)) and the colour Rec.709 / Y linearly; relative error below 1e-3 from
-/// 500 K up. Above kMaxK the last colour is scaled by (T / kMaxK)^4 (Stefan-Boltzmann, exact
-/// for the total, approximate per channel).
+/// 500 K up. Above kMaxK a second table, uniform in kMaxK / T down to T -> infinity, holds
+/// Y / T and the colour (the visible radiance of a very hot body grows like T, Rayleigh-Jeans,
+/// not like Stefan-Boltzmann's T⁴ of the total); relative error below 1e-4.
 class BlackbodyTable {
   public:
     static constexpr double kStepK = 10.0;
     static constexpr double kMaxK = 40000.0;
+    static constexpr int kHotNodes = 257;  ///< nodes of u = kMaxK / T in [0, 1]
 
     BlackbodyTable();
     Rgb operator()(float temperature_k) const;
 
   private:
-    std::vector<float> m_log_y;  ///< log of the luminance, cd/m² (very negative when 0)
-    std::vector<Rgb> m_colour;   ///< Rec.709 / Y
-    Rgb m_last{0.0f};
+    std::vector<float> m_log_y;         ///< log of the luminance, cd/m² (very negative when 0)
+    std::vector<Rgb> m_colour;          ///< Rec.709 / Y
+    std::vector<float> m_hot_y_over_t;  ///< above kMaxK: luminance / T, cd/(m² K), by u
+    std::vector<Rgb> m_hot_colour;      ///< above kMaxK: Rec.709 / Y, by u
 };
 
 }  // namespace kasumi

@@ -46,6 +46,22 @@ TEST(Blackbody, TableMatchesDirectIntegration) {
     }
 }
 
+TEST(Blackbody, TableAboveItsLastEntryFollowsPlanckNotStefanBoltzmann) {
+    // Above 40000 K the visible radiance grows like T (Rayleigh-Jeans: B -> 2 c k T / lambda⁴),
+    // not like the T⁴ of the total exitance: at 80000 K the luminance is ~2.3x that at 40000 K,
+    // not 16x. The table must follow Planck's law (direct 1 nm integration) there too.
+    const BlackbodyTable table;
+    for (double t : {40000.0, 40005.0, 45000.0, 80000.0, 2.5e5, 1e7}) {
+        const Rgb direct = blackbody_rec709(t), tabulated = table(static_cast<float>(t));
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(tabulated[c], direct[c], 1e-4 * luminance(direct)) << t;
+    }
+    const double ratio =
+        luminance(blackbody_rec709(80000.0)) / luminance(blackbody_rec709(40000.0));
+    EXPECT_GT(ratio, 2.0);
+    EXPECT_LT(ratio, 2.5);
+}
+
 /// A 24³ block of density 1 with a constant temperature grid in a second file.
 MediumSet emitting_block(float sigma_a, float temperature_k) {
     const std::string density = test::write_box("emission_density", 24, 1.0f, 1.0);
