@@ -38,7 +38,16 @@ struct Mie {
 /// peak lives.
 std::vector<double> mie_theta_grid(double x, int uniform_steps = 1440);
 
-/// A single sphere of size parameter x and relative index m.
+/// Work bound of a single sphere's table: nodes × series terms.
+inline constexpr double kMieTableWork = 3e7;
+
+/// Uniform steps over [0, π] of a single sphere's table: a multiple of 1440 (every 0.125° is a
+/// node) with steps of at most 0.05/x (the ripple and rings of S11 resolved) while the nodes
+/// cost at most kMieTableWork series terms.
+int mie_uniform_steps(double x, int n_terms);
+
+/// A single sphere of size parameter x and relative index m, tabulated on
+/// mie_theta_grid(x, mie_uniform_steps(x, n_terms)).
 Mie make_mie(double x, Complex m_relative);
 /// A single sphere of radius r (µm) at vacuum wavelength λ (nm) in a medium of real index
 /// n_medium; x = 2π r n_medium / λ and m_relative = m / n_medium.
