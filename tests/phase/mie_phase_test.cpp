@@ -79,6 +79,27 @@ TEST(MiePhase, NarrowDistributionApproachesTheSingleSphere) {
     EXPECT_NEAR(poly.table->eval(0.3), single.table->eval(0.3), 2e-3 * single.table->eval(0.3));
 }
 
+TEST(MiePhase, LogNormalRayleighParticlesAverageToTheMomentsOfTheDistribution) {
+    // Small spheres (BH eq. 5.8): C_sca = (8π/3) k⁴ |K|² r⁶, C_abs = 4π k Im(K) r³, K = (m² − 1) /
+    // (m² + 2), to O(x²). Over a log-normal number distribution E[r^n] = r_g^n exp(n² σ² / 2), so
+    // <C_sca> ∝ r_g⁶ exp(18 σ²) and <C_abs> ∝ r_g³ exp(4.5 σ²). r_g = 0.5 nm at 550 nm keeps
+    // x < 0.03 where the weight lies (corrections < 1e-4). Weighting the radii by an extra r^±1
+    // (a missing or doubled Jacobian of ln r) moves <C_sca> by exp(6σ²) (27% at σ = 0.2).
+    const double wavelength = 550.0, k = 2.0 * kPiD / (wavelength * 1e-3);
+    const Complex m(1.5, 0.1);
+    const Complex kk = (m * m - 1.0) / (m * m + 2.0);
+    for (const double sigma : {0.2, 0.4}) {
+        const double rg = 5e-4;
+        const Mie p = make_mie_polydisperse(LogNormalSizes{rg, sigma}, wavelength, m, 1.0);
+        const double c_sca = 8.0 * kPiD / 3.0 * std::pow(k, 4) * std::norm(kk) * std::pow(rg, 6) *
+                             std::exp(18.0 * sigma * sigma);
+        const double c_abs =
+            4.0 * kPiD * k * kk.imag() * std::pow(rg, 3) * std::exp(4.5 * sigma * sigma);
+        EXPECT_NEAR(p.summary->c_sca_um2, c_sca, 2e-4 * c_sca) << sigma;
+        EXPECT_NEAR(p.summary->c_ext_um2 - p.summary->c_sca_um2, c_abs, 2e-4 * c_abs) << sigma;
+    }
+}
+
 TEST(MiePhase, ModifiedGammaCloudIsForwardScatteringAndNormalised) {
     // Deirmendjian's cloud C.1 (alpha = 6, gamma = 1, r_c = 4 µm) at 700 nm.
     const Mie cloud = make_mie_polydisperse(ModifiedGammaSizes{4.0, 6.0, 1.0}, 700.0,
