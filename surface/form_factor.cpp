@@ -1,5 +1,7 @@
 #include "surface/form_factor.h"
 
+#include "core/error.h"
+
 #include <cmath>
 
 namespace kasumi {
@@ -34,8 +36,10 @@ double point_to_polygon_form_factor(const DVec3& x, const DVec3& n, const DVec3*
         newell += glm::cross(vertices[i], vertices[(i + 1) % count]);
     if (!(glm::dot(newell, x - vertices[0]) > 0.0))
         return 0.0;
-    DVec3 clipped[8];
-    const int m = clip_to_hemisphere(x, n, vertices, std::min(count, 7), clipped);
+    // Clipping a convex polygon adds at most one vertex.
+    KASUMI_CHECK(count >= 3 && count <= kMaxFormFactorVertices);
+    DVec3 clipped[kMaxFormFactorVertices + 1];
+    const int m = clip_to_hemisphere(x, n, vertices, count, clipped);
     if (m < 3)
         return 0.0;
     double sum = 0.0;

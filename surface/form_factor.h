@@ -25,8 +25,12 @@ namespace kasumi {
 ///   F = 1/(2π) Σ_i Θ_i n · (r_i × r_{i+1}) / |r_i × r_{i+1}|,  r_i = v_i − x, Θ_i = angle(r_i,
 ///   r_{i+1}),
 /// with the vertices ordered clockwise as seen from x (the front side faces x).
+/// `count` is at most kMaxFormFactorVertices.
 double point_to_polygon_form_factor(const DVec3& x, const DVec3& n, const DVec3* vertices,
                                     int count);
+
+/// The most vertices point_to_polygon_form_factor takes.
+inline constexpr int kMaxFormFactorVertices = 64;
 
 /// A planar convex patch (triangle or parallelogram-like quad) with its front normal and area;
 /// points on it are drawn by `point(u, v)` for (u, v) in [0, 1]² (area-uniform for

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace kasumi {
 namespace {
@@ -106,6 +107,27 @@ TEST(FormFactorTest, PointToParallelDiskMatchesHowellsClosedForms) {
         }
         const double expected = howell_parallel_disk(a, h, r);
         EXPECT_NEAR(f, expected, 2e-6 * expected) << a << " " << h << " " << r;
+    }
+}
+
+TEST(FormFactorTest, ManySidedPolygonEqualsTheSumOfItsFan) {
+    // Lambert's formula is additive: a convex 16- or 64-gon (tilted so the receiver's horizon
+    // cuts it) must give the sum over its fan triangles, each clipped on its own. The clip
+    // buffer once held 8 vertices and silently used only the first 7.
+    for (const int n : {16, 64}) {
+        std::vector<DVec3> polygon;
+        for (int i = n - 1; i >= 0; --i) {  // clockwise seen from +z: faces down
+            const double t = 2.0 * kPi * i / n;
+            polygon.emplace_back(0.3 + std::cos(t), std::sin(t), 0.5 + 0.6 * std::cos(t));
+        }
+        const DVec3 x(0.0), normal = glm::normalize(DVec3(0.3, 0.0, 1.0));
+        double fan = 0.0;
+        for (int i = 1; i + 1 < n; ++i) {
+            const DVec3 tri[3] = {polygon[0], polygon[i], polygon[i + 1]};
+            fan += point_to_polygon_form_factor(x, normal, tri, 3);
+        }
+        ASSERT_GT(fan, 0.05);
+        EXPECT_NEAR(point_to_polygon_form_factor(x, normal, polygon.data(), n), fan, 1e-12) << n;
     }
 }
 
