@@ -54,6 +54,9 @@ struct Light {
         emitter;
     ShadowMode shadows = ShadowMode::Ray;
     int samples = 16;  ///< shadow samples per shading point for extended (non-delta) lights
+    /// Adaptive shadows: when the first `shadow_probes` samples agree, the rest are skipped
+    /// (lights/light_samples.h, ProbeRule; biased). 0: every point takes all `samples`.
+    int shadow_probes = 0;
     ShadowMapSettings shadow_map{};  ///< used when shadows == ShadowMode::Map
 };
 

@@ -192,6 +192,15 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
             n->fail("must be an integer in [1, 4096]");
         light.samples = static_cast<int>(samples);
     }
+    if (const auto n = reader.optional("shadow_probes")) {
+        if (is_delta(light))
+            n->fail("shadow_probes applies to line, polygon and sphere lights; a " +
+                    light_type_name(light) + " light takes one shadow ray");
+        const int64_t probes = n->as_int();
+        if (probes < 0 || probes > light.samples)
+            n->fail("must be an integer in [0, samples = " + std::to_string(light.samples) + "]");
+        light.shadow_probes = static_cast<int>(probes);
+    }
 }
 
 }  // namespace

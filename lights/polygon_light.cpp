@@ -120,7 +120,19 @@ Rgb unshadowed_irradiance(const PolygonLight& light, const Vec3& p, const Vec3& 
     return light.luminance * static_cast<float>(std::max(e, 0.0));
 }
 
-IncidentLight sample_incident(const PolygonLight& light, const Vec3& p, Vec2 u) {
+namespace {
+
+/// The point of the polygon for u: a parallelogram v0 + u.x (v1 − v0) + u.y (v3 − v0), which
+/// is uniform in area and keeps stratified u stratified; any other polygon a fan triangle
+/// picked by area, then Shirley's square-root warp inside it.
+Vec3 polygon_point(const PolygonLight& light, Vec2 u) {
+    const auto& v = light.vertices;
+    if (v.size() == 4) {
+        const Vec3 gap = (v[0] + v[2]) - (v[1] + v[3]);
+        const Vec3 diagonal = v[2] - v[0];
+        if (glm::dot(gap, gap) <= 1e-10f * glm::dot(diagonal, diagonal))
+            return v[0] + u.x * (v[1] - v[0]) + u.y * (v[3] - v[0]);
+    }
     // Pick a fan triangle by area, then reuse u.x rescaled within its CDF interval.
     size_t tri = 0;
     while (tri + 1 < light.fan_cdf.size() && u.x >= light.fan_cdf[tri])
@@ -132,7 +144,13 @@ IncidentLight sample_incident(const PolygonLight& light, const Vec3& p, Vec2 u) 
     const float su = std::sqrt(ux);
     const float b1 = 1.0f - su, b2 = u.y * su;
     const Vec3& v0 = light.vertices[0];
-    const Vec3 x = v0 + b1 * (light.vertices[tri + 1] - v0) + b2 * (light.vertices[tri + 2] - v0);
+    return v0 + b1 * (light.vertices[tri + 1] - v0) + b2 * (light.vertices[tri + 2] - v0);
+}
+
+}  // namespace
+
+IncidentLight sample_incident(const PolygonLight& light, const Vec3& p, Vec2 u) {
+    const Vec3 x = polygon_point(light, u);
     IncidentLight in;
     in.light_position = x;
     const Vec3 to = x - p;

@@ -25,6 +25,28 @@ Rgb unshadowed_irradiance(const SphereLight& light, const Vec3& p, const Vec3& n
     return light.luminance * static_cast<float>(std::max(e, 0.0));
 }
 
+namespace {
+
+/// Shirley & Chiu 1997, "A low distortion map between disk and square": [0, 1)² onto the unit
+/// disc, area-preserving, mapping squares to compact (nearly square) cells, so stratified u
+/// stays stratified in the disc (the polar map (√u, 2πu) turns strata into long slivers).
+Vec2 concentric_disc(Vec2 u) {
+    const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
+    if (a == 0.0f && b == 0.0f)
+        return Vec2(0.0f);
+    float r, phi;
+    if (std::abs(a) > std::abs(b)) {
+        r = a;
+        phi = 0.25f * kPi * (b / a);
+    } else {
+        r = b;
+        phi = 0.5f * kPi - 0.25f * kPi * (a / b);
+    }
+    return Vec2(r * std::cos(phi), r * std::sin(phi));
+}
+
+}  // namespace
+
 IncidentLight sample_incident(const SphereLight& light, const Vec3& p, Vec2 u) {
     IncidentLight in;
     const Vec3 to_center = light.center - p;
@@ -35,15 +57,36 @@ IncidentLight sample_incident(const SphereLight& light, const Vec3& p, Vec2 u) {
     const float cos_sigma = safe_sqrt(1.0f - sin2_sigma);
     // 1 − cos σ without cancellation for small, distant spheres.
     const float one_minus_cos = sin2_sigma / (1.0f + cos_sigma);
-    const float cos_theta = 1.0f - u.x * one_minus_cos;
+    // A point (x, y) uniform in the unit disc, ρ² = x² + y² uniform in [0, 1], becomes the
+    // direction with 1 − cos θ = ρ² (1 − cos σ) (uniform in solid angle over the cone) at the
+    // disc point's azimuth: sin θ / ρ = √((1 − cos σ)(2 − ρ² (1 − cos σ))).
+    const Vec2 disc = concentric_disc(u);
+    const float rho2 = std::min(1.0f, disc.x * disc.x + disc.y * disc.y);
+    const float one_minus_cos_theta = rho2 * one_minus_cos;
+    const float cos_theta = 1.0f - one_minus_cos_theta;
+    const float sin_over_rho = safe_sqrt(one_minus_cos * (2.0f - one_minus_cos_theta));
     const Vec3 axis = to_center / d;
-    in.wi = direction_about(axis, cos_theta, kTwoPi * u.y);
+    const Frame frame(axis);
+    in.wi = glm::normalize(
+        frame.to_world(Vec3(sin_over_rho * disc.x, sin_over_rho * disc.y, cos_theta)));
     // Nearest intersection of p + t wi with the sphere: t = d cos θ − √(R² − d² sin² θ).
-    const float sin2_theta = std::max(0.0f, (1.0f - cos_theta) * (1.0f + cos_theta));
+    const float sin2_theta = std::max(0.0f, one_minus_cos_theta * (2.0f - one_minus_cos_theta));
     in.distance = d * cos_theta - safe_sqrt(light.radius * light.radius - d * d * sin2_theta);
     in.light_position = p + in.distance * in.wi;
     in.irradiance = light.luminance * (kTwoPi * one_minus_cos);
     return in;
+}
+
+float sample_pdf(const SphereLight& light, const Vec3& p, const Vec3& wi) {
+    const Vec3 to_center = light.center - p;
+    const float d = glm::length(to_center);
+    if (!(d > light.radius))
+        return 0.0f;
+    const float sin2_sigma = (light.radius / d) * (light.radius / d);
+    const float cos_sigma = safe_sqrt(1.0f - sin2_sigma);
+    if (glm::dot(wi, to_center / d) < cos_sigma)
+        return 0.0f;
+    return 1.0f / (kTwoPi * sin2_sigma / (1.0f + cos_sigma));
 }
 
 float sphere_flux_lm(const SphereLight& light) {

@@ -22,8 +22,13 @@ Rgb unshadowed_irradiance(const SphereLight& light, const Vec3& p, const Vec3& n
 
 /// A direction uniform in the cone the sphere subtends at p (pdf 1 / (2π (1 − cos σ)) per
 /// steradian), with the point where it meets the sphere; irradiance L · 2π (1 − cos σ). Zero
-/// inside the sphere.
+/// inside the sphere. u goes through Shirley & Chiu's concentric disc map, so stratified u
+/// gives compact strata in the cone.
 IncidentLight sample_incident(const SphereLight& light, const Vec3& p, Vec2 u);
+
+/// The density of sample_incident's directions per steradian: 1 / (2π (1 − cos σ)) inside the
+/// cone, 0 outside it (and inside the sphere).
+float sample_pdf(const SphereLight& light, const Vec3& p, const Vec3& wi);
 
 /// Luminous flux, lm: π L × 4π R².
 float sphere_flux_lm(const SphereLight& light);

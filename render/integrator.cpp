@@ -1,5 +1,6 @@
 #include "render/integrator.h"
 
+#include "lights/light_samples.h"
 #include "render/gi.h"
 #include "render/photon_gi.h"
 #include "render/sky_shafts.h"
@@ -90,54 +91,73 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
                                             : KnownVisibility::Unknown;
         Rgb reflected(0.0f);
         float unshadowed = 0.0f;
+        // Extended lights: stratified samples (Owen-scrambled Sobol, seeded from rng) and, with
+        // `shadow_probes`, the adaptive rule for ray-traced or unshadowed lights
+        // (lights/light_samples.h). Delta lights consume no random numbers.
+        const bool delta = is_delta(light);
+        const StratifiedLightSamples u_light =
+            delta ? StratifiedLightSamples(0u, 0u) : StratifiedLightSamples(rng);
+        ProbeRule probes(samples, traced || light.shadows == ShadowMode::None
+                                      ? light.shadow_probes
+                                      : 0);
         for (int k = 0; k < samples; ++k) {
-            const IncidentLight in = sample_incident(light, hit.position, rng);
-            if (is_black(in.irradiance))
-                continue;
-            const float cos_theta = glm::dot(ns, in.wi);
-            if (cos_theta <= 0.0f)
-                continue;
-            unshadowed += luminance(in.irradiance) * cos_theta;
-            if (glm::dot(ng, in.wi) <= 0.0f)
-                continue;
-            if (visible == KnownVisibility::Shadowed) {
-                ++counters.shadow_rays_avoided;
-                continue;
-            }
-            const bool to_infinity = in.distance >= kInfinity;
-            const Vec3 origin = offset_ray_origin(hit, in.wi);
-            Rgb t_media(1.0f);
-            if (scene.plan().volume) {
-                VolumeCounters vc;
-                const VolumeSettings& volume = desc.render.volume;
-                t_media = estimate_transmittance(
-                    scene.media(), Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance},
-                    volume.estimator, march_step_m(scene.media(), volume), rng, vc);
-                counters.density_lookups += vc.density_lookups;
-                counters.transmittance_rays += vc.transmittance_estimates;
-                if (is_black(t_media))
-                    continue;
-            }
-            if (visible == KnownVisibility::Lit) {
-                ++counters.shadow_rays_avoided;
-            } else if (traced) {
-                ++counters.surface_shadow_rays;
-                const bool blocked = to_infinity
-                                         ? scene.occlusion()->occluded_direction(origin, in.wi)
-                                         : scene.occlusion()->occluded(origin, in.light_position);
-                if (blocked)
-                    continue;
-            }
-            float visibility = 1.0f;
-            if (light.shadows == ShadowMode::Map || light.shadows == ShadowMode::ShadowVolume) {
-                visibility =
-                    scene.staged_visibility(static_cast<size_t>(&light - desc.lights.data()),
-                                            hit.position, ng, origin, in.light_position, wo);
-                if (!(visibility > 0.0f))
-                    continue;
-            }
-            reflected += phong_brdf(material, ns, wo, in.wi) * in.irradiance * cos_theta * t_media *
-                         visibility;
+            const IncidentLight in = delta ? incident_light(light, hit.position)
+                                           : sample_incident(light, hit.position, u_light[k]);
+            LightSampleOutcome outcome = LightSampleOutcome::Ignored;
+            [&] {
+                if (is_black(in.irradiance))
+                    return;
+                const float cos_theta = glm::dot(ns, in.wi);
+                if (cos_theta <= 0.0f)
+                    return;
+                unshadowed += luminance(in.irradiance) * cos_theta;
+                outcome = LightSampleOutcome::Blocked;
+                if (glm::dot(ng, in.wi) <= 0.0f)
+                    return;
+                if (visible == KnownVisibility::Shadowed) {
+                    ++counters.shadow_rays_avoided;
+                    return;
+                }
+                const bool to_infinity = in.distance >= kInfinity;
+                const Vec3 origin = offset_ray_origin(hit, in.wi);
+                Rgb t_media(1.0f);
+                if (scene.plan().volume) {
+                    VolumeCounters vc;
+                    const VolumeSettings& volume = desc.render.volume;
+                    t_media = estimate_transmittance(
+                        scene.media(),
+                        Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance},
+                        volume.estimator, march_step_m(scene.media(), volume), rng, vc);
+                    counters.density_lookups += vc.density_lookups;
+                    counters.transmittance_rays += vc.transmittance_estimates;
+                    if (is_black(t_media))
+                        return;
+                }
+                if (visible == KnownVisibility::Lit) {
+                    ++counters.shadow_rays_avoided;
+                } else if (traced) {
+                    ++counters.surface_shadow_rays;
+                    const bool blocked =
+                        to_infinity ? scene.occlusion()->occluded_direction(origin, in.wi)
+                                    : scene.occlusion()->occluded(origin, in.light_position);
+                    if (blocked)
+                        return;
+                }
+                float visibility = 1.0f;
+                if (light.shadows == ShadowMode::Map ||
+                    light.shadows == ShadowMode::ShadowVolume) {
+                    visibility =
+                        scene.staged_visibility(static_cast<size_t>(&light - desc.lights.data()),
+                                                hit.position, ng, origin, in.light_position, wo);
+                    if (!(visibility > 0.0f))
+                        return;
+                }
+                outcome = LightSampleOutcome::Lit;
+                reflected += phong_brdf(material, ns, wo, in.wi) * in.irradiance * cos_theta *
+                             t_media * visibility;
+            }();
+            if (probes.record(k, outcome))
+                break;
         }
         radiance += shadow_sample_weight(light, hit.position, ns, unshadowed) * reflected;
     }
