@@ -78,6 +78,8 @@ class DensityGrid {
     Vec3 upper() const { return m_origin_f + Vec3(m_bricks * kBrick); }
 
   private:
+    friend class DensityGridBuilder;  // volume/density_grid_build.h: parallel construction
+
     size_t brick_slot(IVec3 b) const {
         return static_cast<size_t>(b.x) +
                static_cast<size_t>(m_bricks.x) *

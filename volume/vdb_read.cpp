@@ -1,10 +1,12 @@
 #include "volume/vdb_io.h"
 
 #include "core/error.h"
+#include "volume/density_grid_build.h"
 
 #include <openvdb/openvdb.h>
 
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <mutex>
 
@@ -90,29 +92,48 @@ LoadedGrid load_density_grid(const std::string& path, const std::string& grid_na
         return loaded;
     }
     const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
-    auto dense = std::make_shared<DensityGrid>(IVec3(box.min().x(), box.min().y(), box.min().z()),
-                                               IVec3(box.max().x(), box.max().y(), box.max().z()));
-    auto check = [&](float v, const openvdb::Coord& c) {
-        if (!std::isfinite(v) || v < 0.0f) {
-            throw_input_error(where + ": voxel " + coord_text(c) + " = " + std::to_string(v) +
-                              ": densities must be finite and >= 0");
-        }
-    };
-    for (auto it = grid->cbeginValueOn(); it; ++it) {
-        const float v = *it;
-        if (it.isVoxelValue()) {
-            check(v, it.getCoord());
-            dense->set(IVec3(it.getCoord().x(), it.getCoord().y(), it.getCoord().z()), v);
-        } else {
-            const openvdb::CoordBBox tile = it.getBoundingBox();
-            check(v, tile.min());
-            for (auto c = tile.begin(); c; ++c)
-                dense->set(IVec3((*c).x(), (*c).y(), (*c).z()), v);
-        }
+
+    // Every active voxel lies in a leaf (8³ voxels) or an active tile of an internal node (a
+    // box of 128³ or 4096³ voxels, aligned to 8); tiles are cut into 8³ blocks of one value.
+    const openvdb::FloatTree& tree = grid->tree();
+    std::vector<VoxelBlock> blocks;
+    blocks.reserve(tree.leafCount());
+    for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+        VoxelBlock block;
+        block.origin = IVec3(leaf->origin().x(), leaf->origin().y(), leaf->origin().z());
+        block.values = leaf->buffer().data();
+        for (size_t w = 0; w < block.active.size(); ++w)
+            block.active[w] =
+                leaf->getValueMask().getWord<uint64_t>(static_cast<openvdb::Index>(w));
+        blocks.push_back(block);
+    }
+    std::deque<std::vector<float>> tile_values;  // one block of each tile's value
+    auto tile = tree.cbeginValueOn();
+    tile.setMaxDepth(openvdb::FloatTree::ValueOnCIter::LEAF_DEPTH - 1);  // tiles only
+    for (; tile; ++tile) {
+        const openvdb::CoordBBox b = tile.getBoundingBox();
+        tile_values.emplace_back(VoxelBlock::kVoxels, *tile);
+        VoxelBlock block;
+        block.values = tile_values.back().data();
+        block.active.fill(~uint64_t(0));
+        for (int z = b.min().z(); z <= b.max().z(); z += VoxelBlock::kEdge)
+            for (int y = b.min().y(); y <= b.max().y(); y += VoxelBlock::kEdge)
+                for (int x = b.min().x(); x <= b.max().x(); x += VoxelBlock::kEdge) {
+                    block.origin = IVec3(x, y, z);
+                    blocks.push_back(block);
+                }
     }
     // Inactive voxels read as the background, 0; inactive values stored in leaves are ignored.
-    dense->finalize();
-    loaded.grid = std::move(dense);
+    DensityGridBuild built =
+        DensityGridBuilder::build(IVec3(box.min().x(), box.min().y(), box.min().z()),
+                                  IVec3(box.max().x(), box.max().y(), box.max().z()), blocks);
+    if (built.has_invalid) {
+        const IVec3 c = built.invalid.index;
+        throw_input_error(where + ": voxel " + coord_text(openvdb::Coord(c.x, c.y, c.z)) + " = " +
+                          std::to_string(built.invalid.value) +
+                          ": densities must be finite and >= 0");
+    }
+    loaded.grid = std::move(built.grid);
     return loaded;
 }
 
