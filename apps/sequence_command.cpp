@@ -39,6 +39,8 @@ struct Options {
     int64_t seed = -1;
     int threads = 0;
     std::string res;
+    std::string aovs = "all";
+    std::string compression = "zip";
 };
 
 std::vector<Override> render_overrides(const Options& o) {
@@ -75,6 +77,14 @@ void run(const Options& o) {
     s.log = o.scene.quiet ? nullptr : stderr;
     s.cancel = &g_cancel;
     s.metadata = {{"version", version_string()}};
+    if (!parse_film_aovs(o.aovs, s.aovs))
+        throw Error(ErrorKind::Usage,
+                    "--aovs expects all, none or a comma-separated list of "
+                    "albedo, depth, surface, volume, transmittance; got \"" +
+                        o.aovs + "\"");
+    if (!parse_exr_compression(o.compression, s.compression))
+        throw Error(ErrorKind::Usage,
+                    "--compression expects zip, piz, rle or none; got \"" + o.compression + "\"");
     if (o.frames.empty() && o.frame < 0)
         throw Error(ErrorKind::Usage, "sequence needs --frames A-B[:step] or --frame N");
     if (o.frame >= 0) {
@@ -115,9 +125,14 @@ void run(const Options& o) {
                          n, n == 1 ? "" : "s", summary.rendered, summary.skipped,
                          summary.interrupted ? ", interrupted" : "", summary.seconds);
             if (summary.rendered > 0) {
-                std::fprintf(stderr, "; %.3f s per rendered frame (render %.3f s)",
-                             summary.frame_seconds / static_cast<double>(summary.rendered),
-                             summary.render_seconds / static_cast<double>(summary.rendered));
+                // Frames are written while the next renders: the wall time per frame is less
+                // than a frame's own time (scene + render + write).
+                const double r = static_cast<double>(summary.rendered);
+                std::fprintf(stderr,
+                             "; %.3f s per rendered frame (own time %.3f s: render %.3f s, "
+                             "write %.3f s)",
+                             summary.seconds / r, summary.frame_seconds / r,
+                             summary.render_seconds / r, summary.write_seconds / r);
             }
             std::fprintf(stderr, "\nsequence: over the run: %s\n",
                          reuse_text(summary.reuse).c_str());
@@ -165,6 +180,11 @@ void add_sequence_command(CLI::App& root) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--threads", o->threads, "worker threads (0: all)")->check(CLI::Range(0, 1024));
     cmd->add_option("--res", o->res, "resolution WxH (overrides film.width/height)");
+    cmd->add_option("--aovs", o->aovs,
+                    "AOV channels written beside R,G,B,A: all (default), none, or a list of "
+                    "albedo,depth,surface,volume,transmittance");
+    cmd->add_option("--compression", o->compression,
+                    "EXR compression, all lossless: zip (default), piz, rle, none");
     cmd->callback([o] { run(*o); });
 }
 

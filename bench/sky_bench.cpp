@@ -6,6 +6,7 @@
 // Wall time and the process's CPU time (user + system) are both reported: on a loaded machine
 // only the CPU time is comparable between runs.
 //   sky_bench [--scene S] [--sequence S] [--reps N] [--frames N] [--paths N] [--out DIR]
+//             [--aovs all|none|LIST] [--compression zip|piz|rle|none] [--write-queue N]
 #include "render/renderer.h"
 #include "render/scene_loader.h"
 #include "render/sequence.h"
@@ -89,9 +90,40 @@ int main(int argc, char** argv) {
     std::string scene = "data/scenes/sunset.json", sequence = "data/scenes/sunset_sequence.json";
     std::string out = "/tmp/kasumi_sky_bench";
     int reps = 5, frames = 240, paths = 128;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--scene")
+    uint32_t aovs = kAovAll;
+    ExrCompression compression = ExrCompression::Zip;
+    std::string aovs_text = "all", compression_text = "zip";
+    size_t write_queue = 1;
+    const char* usage =
+        "usage: sky_bench [--scene S] [--sequence S] [--reps N] [--frames N] [--paths N] "
+        "[--out DIR] [--aovs all|none|LIST] [--compression zip|piz|rle|none] "
+        "[--write-queue N (0: write each frame before the next)]\n";
+    for (int i = 1; i < argc; i += 2) {
+        const std::string key = argv[i];
+        if (key == "--help" || key == "-h") {
+            std::printf("%s", usage);
+            return 0;
+        }
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "%s needs a value\n%s", key.c_str(), usage);
+            return 2;
+        }
+        const std::string value = argv[i + 1];
+        if (key == "--aovs") {
+            aovs_text = value;
+            if (!parse_film_aovs(value, aovs)) {
+                std::fprintf(stderr, "bad --aovs %s\n", value.c_str());
+                return 2;
+            }
+        } else if (key == "--compression") {
+            compression_text = value;
+            if (!parse_exr_compression(value, compression)) {
+                std::fprintf(stderr, "bad --compression %s\n", value.c_str());
+                return 2;
+            }
+        } else if (key == "--write-queue")
+            write_queue = static_cast<size_t>(std::max(0, std::atoi(value.c_str())));
+        else if (key == "--scene")
             scene = value;
         else if (key == "--sequence")
             sequence = value;
@@ -104,7 +136,7 @@ int main(int argc, char** argv) {
         else if (key == "--out")
             out = value;
         else {
-            std::fprintf(stderr, "unknown option %s\n", key.c_str());
+            std::fprintf(stderr, "unknown option %s\n%s", key.c_str(), usage);
             return 2;
         }
     }
@@ -165,15 +197,19 @@ int main(int argc, char** argv) {
         options.output_pattern = out + "/sky.####.exr";
         options.skip_existing = false;
         options.log = nullptr;
+        options.aovs = aovs;
+        options.compression = compression;
+        options.write_queue = write_queue;
         const double c0 = cpu_seconds();
         const SequenceSummary s = run_sequence(options);
         const double c1 = cpu_seconds();
+        const double n = static_cast<double>(std::max<size_t>(1, s.rendered));
         std::printf(
-            "sequence %s, %zu frames: %.3f s wall per frame (%.3f rendering), %.3f s CPU "
-            "per frame\n",
-            sequence.c_str(), s.rendered, s.seconds / std::max<size_t>(1, s.rendered),
-            s.render_seconds / std::max<size_t>(1, s.rendered),
-            (c1 - c0) / std::max<size_t>(1, s.rendered));
+            "sequence %s, %zu frames (aovs %s, compression %s, write queue %zu): %.3f s wall "
+            "per frame (%.3f rendering, %.3f writing), %.3f s CPU per "
+            "frame\n",
+            sequence.c_str(), s.rendered, aovs_text.c_str(), compression_text.c_str(), write_queue,
+            s.seconds / n, s.render_seconds / n, s.write_seconds / n, (c1 - c0) / n);
         std::filesystem::remove_all(out);
     }
     if (paths > 0) {

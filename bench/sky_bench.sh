@@ -4,7 +4,8 @@
 # frame of the 240-frame data/scenes/sunset_sequence.json (EXRs written to a scratch dir), and
 # the fast-vs-reference luminance error over the sky dome at the frame's sun elevation.
 # Prints the machine's load average before and after: on a shared machine compare CPU times.
-#   bench/sky_bench.sh [BUILD_DIR] [sky_bench options: --reps N --frames N --paths N]
+#   bench/sky_bench.sh [BUILD_DIR] [sky_bench options: --reps N --frames N --paths N
+#                      --aovs all|none|LIST --compression zip|piz|rle|none --write-queue N]
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build/release}"

@@ -6,12 +6,15 @@
 #include "render/animation.h"
 #include "render/renderer.h"
 #include "render/sequence_contact_sheet.h"
+#include "render/sequence_writer.h"
 
 #include <chrono>
 #include <cstdarg>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 
 namespace kasumi {
 
@@ -189,12 +192,37 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
     (void)frame_path(options.output_pattern, 0);  // a pattern without '#' is a usage error
     SequenceScene scene(options);
     SequenceSummary summary;
-    std::map<int64_t, Image> thumbnails;
     const bool want_sheet = !options.contact_sheet.empty();
+
+    // Touched by the writer's tasks only, until writer.finish() (declared before the writer,
+    // whose destructor may still run tasks while an exception unwinds).
+    std::map<int64_t, Image> thumbnails;
+    size_t written = 0;
+    double frame_seconds_sum = 0.0, write_seconds_sum = 0.0;
+    // Images the writer is done with, refilled by the next frames (no allocation per frame).
+    std::mutex spare_mutex;
+    std::vector<Image> spare_images;
+
+    std::unique_ptr<SequenceWriter> writer;
+    if (options.write_queue > 0)
+        writer = std::make_unique<SequenceWriter>(options.write_queue);
+    // Runs `task` on the writer thread, after the earlier frames' files (or here and now).
+    const auto dispatch = [&](std::function<void()> task) {
+        if (writer != nullptr)
+            writer->submit(std::move(task));
+        else
+            task();
+    };
+    const auto log_later = [&](std::string line) {
+        dispatch(
+            [log = options.log, line = std::move(line)] { log_line(log, "%s", line.c_str()); });
+    };
 
     for (const int64_t frame : options.frames) {
         if (!options.render)
             break;
+        if (writer != nullptr)
+            writer->check();  // a failed write stops the run before rendering more
         if (options.cancel != nullptr && options.cancel->load()) {
             summary.interrupted = true;
             break;
@@ -204,18 +232,20 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
             options.preview_dir.empty()
                 ? std::string()
                 : frame_preview_path(options.output_pattern, options.preview_dir, frame);
+        const std::string frame_name = frame_path("######", frame);
         if (options.skip_existing && fs::exists(path)) {
             ++summary.skipped;
             if (!preview_path.empty() && !fs::exists(preview_path)) {
                 const PreviewSettings own = preview_settings(
                     parse_scene(scene.document(frame), options.scene_path, &scene.cache));
-                make_parent_dirs(preview_path);
-                write_preview_png(read_exr(path), preview_path, own);
-                log_line(options.log, "frame %s  exists, skipped (preview %s written)\n",
-                         frame_path("######", frame).c_str(), preview_path.c_str());
+                dispatch([=, log = options.log] {
+                    make_parent_dirs(preview_path);
+                    write_preview_png(read_exr(path), preview_path, own);
+                    log_line(log, "frame %s  exists, skipped (preview %s written)\n",
+                             frame_name.c_str(), preview_path.c_str());
+                });
             } else {
-                log_line(options.log, "frame %s  exists, skipped: %s\n",
-                         frame_path("######", frame).c_str(), path.c_str());
+                log_later("frame " + frame_name + "  exists, skipped: " + path + "\n");
             }
             continue;
         }
@@ -250,13 +280,21 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         const ReuseCounts reuse = scene.cache.end_frame();
         if (result.interrupted) {
             summary.interrupted = true;
-            log_line(options.log, "frame %s  interrupted: dropped, nothing written\n",
-                     frame_path("######", frame).c_str());
+            log_later("frame " + frame_name + "  interrupted: dropped, nothing written\n");
             break;
         }
+        summary.render_seconds += result.seconds;
 
-        const auto write_start = Clock::now();
-        Image image = result.film.to_image();
+        const auto image_start = Clock::now();
+        Image image;
+        {
+            std::lock_guard<std::mutex> lock(spare_mutex);
+            if (!spare_images.empty()) {
+                image = std::move(spare_images.back());
+                spare_images.pop_back();
+            }
+        }
+        result.film.to_image(image, options.aovs);
         image.metadata = options.metadata;
         image.metadata.insert(
             image.metadata.end(),
@@ -266,30 +304,51 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
              {"seed", std::to_string(runtime.desc().render.seed)},
              {"units", "scene-linear Rec.709, luminance in cd/m2"},
              {"stats/nonfinite_samples", std::to_string(result.counters.nonfinite_samples)}});
-        if (!preview_path.empty()) {
-            make_parent_dirs(preview_path);
-            write_preview_png(image, preview_path, preview_settings(runtime.desc()));
-        }
-        make_parent_dirs(path);
-        write_exr(image, path);
-        if (want_sheet)
-            thumbnails.emplace(frame, make_thumbnail(image));
-        const double write_seconds = seconds_since(write_start);
-        const double frame_seconds = seconds_since(frame_start);
+        const PreviewSettings preview =
+            preview_path.empty() ? PreviewSettings{} : preview_settings(runtime.desc());
+        // Time spent on this frame here; the writer adds its own.
+        const double main_seconds = seconds_since(frame_start);
+        const double image_seconds = seconds_since(image_start);
+        const double render_seconds = result.seconds;
+        const uint64_t nonfinite = result.counters.nonfinite_samples;
+        const std::string reuse_line = reuse_text(reuse);
 
-        ++summary.rendered;
-        summary.frame_seconds += frame_seconds;
-        summary.render_seconds += result.seconds;
-        log_line(options.log,
-                 "frame %s  %.3f s (scene %.3f s, render %.3f s, write %.3f s)  %s  -> %s\n",
-                 frame_path("######", frame).c_str(), frame_seconds, setup_seconds, result.seconds,
-                 write_seconds, reuse_text(reuse).c_str(), path.c_str());
-        if (result.counters.nonfinite_samples > 0) {
-            log_line(options.log, "frame %s  warning: %llu non-finite samples were dropped\n",
-                     frame_path("######", frame).c_str(),
-                     static_cast<unsigned long long>(result.counters.nonfinite_samples));
-        }
+        dispatch([&, frame, path, preview_path, preview, frame_name, main_seconds, setup_seconds,
+                  image_seconds, render_seconds, nonfinite, reuse_line,
+                  image = std::move(image)]() mutable {
+            const auto write_start = Clock::now();
+            if (!preview_path.empty()) {
+                make_parent_dirs(preview_path);
+                write_preview_png(image, preview_path, preview);
+            }
+            make_parent_dirs(path);
+            write_exr(image, path, options.compression);
+            if (want_sheet)
+                thumbnails.emplace(frame, make_thumbnail(image));
+            const double write_seconds = image_seconds + seconds_since(write_start);
+            const double frame_seconds = main_seconds + seconds_since(write_start);
+            ++written;
+            frame_seconds_sum += frame_seconds;
+            write_seconds_sum += write_seconds;
+            log_line(options.log,
+                     "frame %s  %.3f s (scene %.3f s, render %.3f s, write %.3f s)  %s  -> %s\n",
+                     frame_name.c_str(), frame_seconds, setup_seconds, render_seconds,
+                     write_seconds, reuse_line.c_str(), path.c_str());
+            if (nonfinite > 0) {
+                log_line(options.log, "frame %s  warning: %llu non-finite samples were dropped\n",
+                         frame_name.c_str(), static_cast<unsigned long long>(nonfinite));
+            }
+            image.metadata.clear();
+            std::lock_guard<std::mutex> lock(spare_mutex);
+            if (spare_images.size() < 2)
+                spare_images.push_back(std::move(image));
+        });
     }
+    if (writer != nullptr)
+        writer->finish();  // every rendered frame is on disk, or the first failure is thrown
+    summary.rendered = written;
+    summary.frame_seconds = frame_seconds_sum;
+    summary.write_seconds = write_seconds_sum;
     summary.reuse = scene.cache.total();
 
     if (want_sheet && !summary.interrupted && !options.frames.empty()) {

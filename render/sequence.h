@@ -4,6 +4,8 @@
 /// it is written atomically under a name from a '#' pattern, and work that does not change
 /// between frames is kept (render/sequence_cache.h). A frame rendered alone (--frame N) is
 /// bit-identical to the same frame of a whole run.
+#include "core/exr_io.h"
+#include "core/film.h"
 #include "render/scene_loader.h"
 #include "render/sequence_cache.h"
 
@@ -56,6 +58,11 @@ struct SequenceOptions {
     std::FILE* log = stderr;          ///< one line per frame and a summary; null: silent
     const std::atomic<bool>* cancel = nullptr;  ///< set asynchronously: stop, drop the frame
     std::vector<std::pair<std::string, std::string>> metadata;  ///< extra EXR attributes
+    uint32_t aovs = kAovAll;  ///< FilmAov bits: the AOV channels written beside R, G, B, A
+    ExrCompression compression = ExrCompression::Zip;  ///< lossless, see core/exr_io.h
+    /// Frames whose files may wait for the background writer while the next frame renders
+    /// (render/sequence_writer.h); 0 writes each frame before rendering the next.
+    size_t write_queue = 1;
 };
 
 struct SequenceSummary {
@@ -65,6 +72,7 @@ struct SequenceSummary {
     double seconds = 0.0;         ///< wall time of the whole run
     double frame_seconds = 0.0;   ///< sum over rendered frames (document to written file)
     double render_seconds = 0.0;  ///< sum of render_image times
+    double write_seconds = 0.0;   ///< sum of the frames' write times (preview, EXR, thumbnail)
     bool interrupted = false;     ///< cancelled: the frame in flight was not written
     ReuseCounts reuse;
     std::string contact_sheet;  ///< written path, or empty
@@ -72,8 +80,11 @@ struct SequenceSummary {
 
 /// Renders (or skips) every frame of `options.frames`, then writes the contact sheet (through
 /// the first frame's preview view and exposure, so brightness changes show). Each
-/// frame's preview is written before its EXR, so an existing EXR means a finished frame. Throws
-/// input errors (scene, animation), usage errors (pattern) and output errors (writing).
+/// frame's preview is written before its EXR, so an existing EXR means a finished frame. A
+/// frame's files are written on a background thread while the next frame renders; every
+/// rendered frame is written before this returns (or unwinds), and after a failed write no
+/// later frame is written. Throws input errors (scene, animation), usage errors (pattern) and
+/// output errors (writing: the first failed frame's error).
 SequenceSummary run_sequence(const SequenceOptions& options);
 
 }  // namespace kasumi

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end checks of `kasumi sequence` and the Slurm scripts: usage and input errors, a
 # 24-frame run (frames, one log line each, summary, contact sheet), skip-existing leaving files
-# untouched, SIGINT/SIGTERM exit codes with no partial or temporary files, a run killed with
+# untouched, a failed write (exit 4, later frames not written), --aovs/--compression,
+# SIGINT/SIGTERM exit codes with no partial or temporary files, a run killed with
 # SIGKILL resumed by a rerun, `render --frame`, and the sbatch scripts run by hand.
 # usage: sequence_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
@@ -62,6 +63,24 @@ expect_exit 0 "24 skipped" -- sequence "$scene" --frames 0-23 -o "$work/seq/fog.
 expect_exit 0 "1 rendered, 0 skipped" -- sequence "$scene" --frame 4 --no-skip-existing \
   -o "$work/seq/fog.####.exr" "${tiny[@]}"
 [ "$before" = "$(mtimes "$work/seq")" ] && fail "--no-skip-existing did not rewrite frame 4"
+
+# A failed write (frame 3's name taken by a directory) while later frames render in the
+# background: exit 4 naming the file, frames 0-2 kept, nothing after frame 3, no temporaries.
+mkdir -p "$work/werr/fog.0003.exr/inside"
+expect_exit 4 "$work/werr/fog.0003.exr" -- sequence "$scene" --frames 0-7 --no-skip-existing \
+  -o "$work/werr/fog.####.exr" "${tiny[@]}"
+[ "$(count_files "$work/werr" 'fog.000[0-2].exr')" -eq 3 ] || fail "write error: frames 0-2 missing"
+[ "$(count_files "$work/werr" 'fog.000[4-7].exr')" -eq 0 ] || fail "write error: later frames written"
+[ "$(count_temps "$work/werr")" -eq 0 ] || fail "write error: temporary files left"
+[ -e "$work/werr/fog.contact_sheet.png" ] && fail "write error: a contact sheet was written"
+
+# AOV and compression choices: bad values are usage errors; good ones write every frame.
+expect_exit 2 "--aovs" -- sequence "$scene" --frames 0-1 -o "$work/u/f.####.exr" --aovs normals
+expect_exit 2 "--compression" -- sequence "$scene" --frames 0-1 -o "$work/u/f.####.exr" \
+  --compression dwaa
+expect_exit 0 "3 rendered" -- sequence "$scene" --frames 0-2 -o "$work/aov/fog.####.exr" \
+  "${tiny[@]}" --aovs depth,albedo --compression rle
+[ "$(count_files "$work/aov" 'fog.000[0-2].exr')" -eq 3 ] || fail "--aovs/--compression: frames missing"
 
 # SIGINT and SIGTERM: exit 130 / 143, finished frames kept, no partial file, no temporaries.
 for sig in INT TERM; do

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace kasumi {
 namespace {
@@ -391,6 +392,72 @@ TEST(Sequence, CancelledBeforeAFrameWritesNothing) {
     EXPECT_EQ(s.rendered, 0u);
     EXPECT_FALSE(fs::exists(dir + "/frames"));
     EXPECT_FALSE(fs::exists(dir + "/sheet.png"));
+}
+
+TEST(Sequence, BackgroundWriterAovsAndCompressionKeepEveryBeautyBit) {
+    // Written in turn (no background writer, every AOV, zip) and in the background (RLE, no
+    // AOVs): the same frames, bit for bit in R, G, B, A, and the same contact sheet.
+    const std::string dir = test_dir("writer");
+    SequenceOptions a = options_for(kFogSequence, dir + "/a", {0, 5, 11});
+    a.write_queue = 0;
+    a.contact_sheet = dir + "/a/sheet.png";
+    SequenceOptions b = options_for(kFogSequence, dir + "/b", {0, 5, 11});
+    b.write_queue = 1;
+    b.aovs = kAovNone;
+    b.compression = ExrCompression::Rle;
+    b.contact_sheet = dir + "/b/sheet.png";
+    EXPECT_EQ(run_sequence(a).rendered, 3u);
+    const SequenceSummary sb = run_sequence(b);
+    EXPECT_EQ(sb.rendered, 3u);
+    EXPECT_GT(sb.write_seconds, 0.0);
+    for (const int64_t f : {0, 5, 11}) {
+        const Image ia = read_exr(frame_path(a.output_pattern, f));
+        const Image ib = read_exr(frame_path(b.output_pattern, f));
+        EXPECT_EQ(ia.channels.size(), 17u);
+        ASSERT_EQ(ib.channels.size(), 4u) << "frame " << f;
+        for (const char* name : {"R", "G", "B", "A"}) {
+            ASSERT_NE(ib.find(name), nullptr) << name;
+            EXPECT_TRUE(ia.find(name)->data == ib.find(name)->data)
+                << "frame " << f << " channel " << name;
+        }
+        EXPECT_EQ(*ib.find_metadata("frame"), std::to_string(f));
+    }
+    std::ifstream sa(a.contact_sheet, std::ios::binary), sb_file(b.contact_sheet, std::ios::binary);
+    const std::string bytes_a((std::istreambuf_iterator<char>(sa)), {});
+    const std::string bytes_b((std::istreambuf_iterator<char>(sb_file)), {});
+    EXPECT_FALSE(bytes_a.empty());
+    EXPECT_EQ(bytes_a, bytes_b);
+}
+
+TEST(Sequence, AFailedWriteStopsTheRunWithAnOutputErrorAndNoPartialFile) {
+    // Frame 3's final name is taken by a non-empty directory, so its rename fails. Frames 0-2
+    // (written before it) stay; frames after it are not written, even if already rendered;
+    // no temporary is left behind and no contact sheet is made.
+    for (const size_t queue : {size_t{0}, size_t{1}}) {
+        const std::string dir = test_dir("write_error_" + std::to_string(queue));
+        SequenceOptions o = options_for(kFogSequence, dir, {0, 1, 2, 3, 4, 5});
+        o.skip_existing = false;
+        o.write_queue = queue;
+        o.contact_sheet = dir + "/sheet.png";
+        const std::string taken = frame_path(o.output_pattern, 3);
+        fs::create_directories(taken + "/inside");
+        try {
+            run_sequence(o);
+            ADD_FAILURE() << "the failed write was not reported";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::Output);
+            EXPECT_NE(std::string(e.what()).find(taken), std::string::npos) << e.what();
+        }
+        for (const int64_t f : {0, 1, 2})
+            EXPECT_EQ(read_exr(frame_path(o.output_pattern, f)).width, 32) << "frame " << f;
+        EXPECT_TRUE(fs::is_directory(taken));
+        for (const int64_t f : {4, 5})
+            EXPECT_FALSE(fs::exists(frame_path(o.output_pattern, f))) << "frame " << f;
+        for (const auto& entry : fs::directory_iterator(dir + "/frames"))
+            EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+                << entry.path();
+        EXPECT_FALSE(fs::exists(o.contact_sheet));
+    }
 }
 
 TEST(Sequence, AnimationErrorsAreInputErrorsNamingTheScene) {

@@ -1,0 +1,112 @@
+// Film read-out: the AOV selection writes exactly the chosen channels with the same values as
+// the full image, a reused Image gets the new film's values with no stale data and no new
+// buffers, and a film whose storage is recycled from a destroyed one starts empty.
+#include "core/film.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace kasumi {
+namespace {
+
+/// A film whose every pixel holds values that depend on (x, y) and `salt`.
+Film make_film(int width, int height, float salt) {
+    Film film(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const float v = salt + static_cast<float>(x) + 100.0f * static_cast<float>(y);
+            PixelSample sum;
+            sum.radiance = Rgb(v, v + 1.0f, v + 2.0f);
+            sum.surface = Rgb(v + 3.0f, v + 4.0f, v + 5.0f);
+            sum.volume = Rgb(v + 6.0f, v + 7.0f, v + 8.0f);
+            sum.transmittance = Rgb(0.25f, 0.5f, 0.75f);
+            sum.albedo = Rgb(0.1f, 0.2f, 0.3f + salt);
+            film.set_pixel(x, y, sum, 1, (x + y) % 2, 2.0f + v);
+        }
+    }
+    return film;
+}
+
+std::vector<std::string> names_of(const Image& image) {
+    std::vector<std::string> names;
+    for (const ImageChannel& c : image.channels)
+        names.push_back(c.name);
+    return names;
+}
+
+TEST(Film, AovSelectionWritesExactlyTheChosenChannels) {
+    const Film film = make_film(5, 3, 0.5f);
+    const Image all = film.to_image();
+    EXPECT_EQ(names_of(all),
+              (std::vector<std::string>{"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B",
+                                        "depth.Z", "surface.R", "surface.G", "surface.B",
+                                        "volume.R", "volume.G", "volume.B", "transmittance.R",
+                                        "transmittance.G", "transmittance.B"}));
+    Image some;
+    film.to_image(some, kAovDepth | kAovVolume);
+    EXPECT_EQ(names_of(some), (std::vector<std::string>{"R", "G", "B", "A", "depth.Z", "volume.R",
+                                                        "volume.G", "volume.B"}));
+    for (const ImageChannel& c : some.channels)
+        EXPECT_EQ(c.data, all.find(c.name)->data) << c.name;
+    Image beauty;
+    film.to_image(beauty, kAovNone);
+    EXPECT_EQ(names_of(beauty), (std::vector<std::string>{"R", "G", "B", "A"}));
+    for (const ImageChannel& c : beauty.channels)
+        EXPECT_EQ(c.data, all.find(c.name)->data) << c.name;
+}
+
+TEST(Film, ReusedImageGetsTheNewFilmWithoutNewBuffers) {
+    Image image;
+    make_film(6, 4, 1.0f).to_image(image);
+    image.metadata = {{"frame", "1"}};
+    const float* before = image.find("volume.G")->data.data();
+    const Film second = make_film(6, 4, 7.0f);
+    second.to_image(image);
+    EXPECT_EQ(image.find("volume.G")->data.data(), before) << "the buffer was reallocated";
+    EXPECT_TRUE(image.metadata.empty());
+    const Image fresh = second.to_image();
+    ASSERT_EQ(names_of(image), names_of(fresh));
+    for (const ImageChannel& c : fresh.channels)
+        EXPECT_EQ(image.find(c.name)->data, c.data) << c.name;
+    // A different size or channel set rebuilds the image.
+    make_film(3, 2, 0.0f).to_image(image, kAovNone);
+    EXPECT_EQ(image.width, 3);
+    EXPECT_EQ(names_of(image), (std::vector<std::string>{"R", "G", "B", "A"}));
+    EXPECT_EQ(image.find("R")->data.size(), 6u);
+}
+
+TEST(Film, RecycledStorageStartsEmpty) {
+    // Large enough for its storage to be kept after destruction (films of >= 65536 pixels).
+    const int width = 320, height = 240;
+    { const Film used = make_film(width, height, 3.0f); }
+    const Film film(width, height);  // takes the storage of `used`
+    const Image image = film.to_image();
+    for (const ImageChannel& c : image.channels) {
+        const float expected = c.name.rfind("transmittance.", 0) == 0 ? 1.0f : 0.0f;
+        for (size_t i = 0; i < c.data.size(); ++i) {
+            if (c.data[i] != expected) {
+                ADD_FAILURE() << c.name << " pixel " << i << " = " << c.data[i];
+                break;
+            }
+        }
+    }
+}
+
+TEST(Film, ParsesAovLists) {
+    uint32_t aovs = 0;
+    EXPECT_TRUE(parse_film_aovs("all", aovs));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovAll));
+    EXPECT_TRUE(parse_film_aovs("none", aovs));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovNone));
+    EXPECT_TRUE(parse_film_aovs("depth,albedo", aovs));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovDepth | kAovAlbedo));
+    EXPECT_TRUE(parse_film_aovs("surface,volume,transmittance", aovs));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovSurface | kAovVolume | kAovTransmittance));
+    EXPECT_FALSE(parse_film_aovs("depth,normals", aovs));
+    EXPECT_FALSE(parse_film_aovs("", aovs));
+}
+
+}  // namespace
+}  // namespace kasumi
