@@ -2,7 +2,10 @@
 
 #include "core/error.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -99,6 +102,16 @@ Vec3 JsonNode::as_vec3() const {
     return Vec3(child(0).as_float(), child(1).as_float(), child(2).as_float());
 }
 
+Vec3 JsonNode::as_point() const {
+    const Vec3 p = as_vec3();
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(std::abs(p[axis]) <= kMaxCoordinateM))
+            child(static_cast<size_t>(axis))
+                .fail("coordinates must be within +-1e12 m (single precision breaks down beyond)");
+    }
+    return p;
+}
+
 Rgb JsonNode::as_rgb() const {
     if (m_value->is_number())
         return Rgb(as_float());
@@ -117,10 +130,24 @@ std::vector<JsonNode> JsonNode::elements() const {
     return out;
 }
 
+void JsonNode::fail_range(const std::string& what, bool in_range_before_rounding) const {
+    // A decimal inside the range may leave it as a float (0.99999999 -> 1, 1e-50 -> 0).
+    if (in_range_before_rounding)
+        fail(what + " (it rounds to the bound in single precision)");
+    fail(what);
+}
+
 float JsonNode::positive() const {
     const float v = as_float();
     if (!(v > 0.0f))
-        fail("must be > 0");
+        fail_range("must be > 0", as_double() > 0.0);
+    return v;
+}
+
+float JsonNode::positive_length() const {
+    const float v = positive();
+    if (!(v <= kMaxCoordinateM))
+        fail("must be <= 1e12 m (single precision breaks down beyond)");
     return v;
 }
 
@@ -141,23 +168,26 @@ Rgb JsonNode::non_negative_rgb() const {
 float JsonNode::in_open(float lo, float hi) const {
     const float v = as_float();
     if (!(v > lo && v < hi))
-        fail("must be in (" + format_number(lo) + ", " + format_number(hi) + ")");
+        fail_range("must be in (" + format_number(lo) + ", " + format_number(hi) + ")",
+                   as_double() > lo && as_double() < hi);
     return v;
 }
 
 float JsonNode::in_closed(float lo, float hi) const {
     const float v = as_float();
     if (!(v >= lo && v <= hi))
-        fail("must be in [" + format_number(lo) + ", " + format_number(hi) + "]");
+        fail_range("must be in [" + format_number(lo) + ", " + format_number(hi) + "]",
+                   as_double() >= lo && as_double() <= hi);
     return v;
 }
 
 Vec3 JsonNode::unit_direction() const {
-    const Vec3 v = as_vec3();
-    const float length = glm::length(v);
-    if (!(length > 0.0f) || !std::isfinite(length))
+    // In double: the squared length of [1e20, 0, 0] overflows a float.
+    const DVec3 v(as_vec3());
+    const double length = glm::length(v);
+    if (!(length > 0.0))
         fail("must be a non-zero vector");
-    return v / length;
+    return Vec3(v / length);
 }
 
 JsonObjectReader::JsonObjectReader(const JsonNode& node) : m_node(node) {
@@ -198,16 +228,27 @@ Json parse_json_text(const std::string& text, const std::string& file) {
     try {
         return Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
     } catch (const Json::parse_error& e) {
-        throw_input_error(file + ": invalid JSON: " + e.what());
+        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ...";
+        // the library's tag says nothing to the user.
+        std::string what = e.what();
+        const size_t tag_end = what.find("] ");
+        if (!what.empty() && what.front() == '[' && tag_end != std::string::npos)
+            what = what.substr(tag_end + 2);
+        throw_input_error(file + ": invalid JSON: " + what);
     }
 }
 
 Json read_json_file(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw_input_error(path + ": is a directory, expected a JSON file");
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw_input_error(path + ": cannot open file");
+        throw_input_error(path + ": cannot open file: " + std::strerror(errno));
     std::ostringstream buffer;
     buffer << in.rdbuf();
+    if (in.bad())
+        throw_input_error(path + ": read error");
     return parse_json_text(buffer.str(), path);
 }
 

@@ -16,6 +16,11 @@ namespace kasumi {
 
 using Json = nlohmann::json;
 
+/// Largest scene coordinate or length, metres. Beyond it single precision breaks down: a
+/// squared distance (2 * 1e12)^2 * 3 and a cube of a coordinate difference stay finite in
+/// float (< 3.4e38), and Embree rejects rays with coordinates above ~1.8e19.
+constexpr double kMaxCoordinateM = 1e12;
+
 /// One value inside a JSON document, with the document's file name and the value's pointer.
 /// Does not own the document: keep the root alive while nodes are in use.
 class JsonNode {
@@ -45,19 +50,25 @@ class JsonNode {
     int64_t as_int() const;  ///< integral number
     bool as_bool() const;
     std::string as_string() const;
-    Vec3 as_vec3() const;                    ///< [x, y, z]
+    Vec3 as_vec3() const;  ///< [x, y, z]
+    /// A point [x, y, z] in metres with every |coordinate| <= kMaxCoordinateM.
+    Vec3 as_point() const;
     Rgb as_rgb() const;                      ///< scalar s (→ s,s,s) or [r, g, b]
     std::vector<JsonNode> elements() const;  ///< array elements
 
     /// Range checks that fail with the reason spelled out.
-    float positive() const;      ///< > 0
-    float non_negative() const;  ///< >= 0
+    float positive() const;         ///< > 0
+    float positive_length() const;  ///< a length in metres in (0, kMaxCoordinateM]
+    float non_negative() const;     ///< >= 0
     Rgb non_negative_rgb() const;
     float in_open(float lo, float hi) const;    ///< in (lo, hi)
     float in_closed(float lo, float hi) const;  ///< in [lo, hi]
     Vec3 unit_direction() const;                ///< non-zero vector, returned normalised
 
   private:
+    /// fail(what), noting when only rounding to float moved the value out of range.
+    [[noreturn]] void fail_range(const std::string& what, bool in_range_before_rounding) const;
+
     const Json* m_value;
     std::string m_file;
     std::string m_pointer;

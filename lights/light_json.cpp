@@ -46,7 +46,7 @@ float read_angle_deg(const JsonNode& node, float lo, float hi) {
 
 SpotLight parse_spot(JsonObjectReader& reader, const Rgb& color) {
     SpotLight l;
-    l.position = reader.required("position").as_vec3();
+    l.position = reader.required("position").as_point();
     l.direction = reader.required("direction").unit_direction();
     const float cone_deg = read_angle_deg(reader.required("cone_deg"), 0.0f, 180.0f);
     float falloff_deg = cone_deg;
@@ -64,7 +64,7 @@ SpotLight parse_spot(JsonObjectReader& reader, const Rgb& color) {
 
 GoniometricLight parse_goniometric(JsonObjectReader& reader, const Rgb& color) {
     GoniometricLight l;
-    l.position = reader.required("position").as_vec3();
+    l.position = reader.required("position").as_point();
     const JsonNode ies = reader.required("ies");
     std::filesystem::path path(ies.as_string());
     if (path.is_relative())
@@ -75,8 +75,11 @@ GoniometricLight parse_goniometric(JsonObjectReader& reader, const Rgb& color) {
         ies.fail(e.what());
     }
     Vec3 rotation_deg(0.0f);
-    if (const auto r = reader.optional("rotation_deg"))
+    if (const auto r = reader.optional("rotation_deg")) {
+        if (!r->is_number() && !r->is_array())
+            r->fail("expected a number (degrees about +y) or [rx, ry, rz]");
         rotation_deg = r->is_number() ? Vec3(0.0f, r->as_float(), 0.0f) : r->as_vec3();
+    }
     l.local_to_world = luminaire_frame(rotation_deg);
     l.scale = color;
     if (const auto flux = reader.optional("flux_lm")) {
@@ -90,8 +93,8 @@ GoniometricLight parse_goniometric(JsonObjectReader& reader, const Rgb& color) {
 
 LineLight parse_line(const JsonNode& node, JsonObjectReader& reader, const Rgb& color) {
     LineLight l;
-    l.from = reader.required("from").as_vec3();
-    l.to = reader.required("to").as_vec3();
+    l.from = reader.required("from").as_point();
+    l.to = reader.required("to").as_point();
     const float length = glm::length(l.to - l.from);
     if (!(length > 0.0f))
         node.fail("a line light needs from != to");
@@ -105,7 +108,7 @@ PolygonLight parse_polygon(JsonObjectReader& reader, const Rgb& color) {
     const JsonNode vertices_node = reader.required("vertices");
     std::vector<Vec3> vertices;
     for (const JsonNode& v : vertices_node.elements())
-        vertices.push_back(v.as_vec3());
+        vertices.push_back(v.as_point());
     const std::string problem = polygon_problem(vertices);
     if (!problem.empty())
         vertices_node.fail(problem);
@@ -118,8 +121,8 @@ PolygonLight parse_polygon(JsonObjectReader& reader, const Rgb& color) {
 
 SphereLight parse_sphere(JsonObjectReader& reader, const Rgb& color) {
     SphereLight l;
-    l.center = reader.required("center").as_vec3();
-    l.radius = reader.required("radius").positive();
+    l.center = reader.required("center").as_point();
+    l.radius = reader.required("radius").positive_length();
     l.luminance = color * reader.required("luminance_cd_m2").non_negative();
     return l;
 }
@@ -221,7 +224,7 @@ Light parse_light(const JsonNode& node, size_t index) {
         light.emitter = l;
     } else if (type == "point") {
         PointLight l;
-        l.position = reader.required("position").as_vec3();
+        l.position = reader.required("position").as_point();
         // An isotropic source spreads its flux over 4π sr: I = Φ / (4π).
         l.intensity =
             color * one_of(reader, "intensity_cd", "flux_lm", 1.0f / (4.0f * kPi), "a point light");

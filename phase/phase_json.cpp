@@ -127,7 +127,12 @@ PhaseFunction parse_phase(const JsonNode& node) {
     } else if (model == "tabulated") {
         const JsonNode file = reader.required("file");
         const std::string path = resolve_path(node, file.as_string());
-        result = Tabulated{std::make_shared<const PhaseTable>(read_phase_table_csv(path)), path};
+        try {
+            result =
+                Tabulated{std::make_shared<const PhaseTable>(read_phase_table_csv(path)), path};
+        } catch (const Error& e) {
+            file.fail(e.what());  // the file's own error, located in the scene
+        }
     } else if (model == "mie") {
         try {
             result = parse_mie(reader);

@@ -9,6 +9,7 @@
 #include "volume/sky_renderer.h"
 #include "volume/transmittance.h"
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -20,17 +21,24 @@ CameraDesc parse_camera(const JsonNode& node) {
     JsonObjectReader reader(node);
     CameraDesc camera;
     if (auto v = reader.optional("position"))
-        camera.position = v->as_vec3();
+        camera.position = v->as_point();
     if (auto v = reader.optional("look_at"))
-        camera.look_at = v->as_vec3();
+        camera.look_at = v->as_point();
     if (auto v = reader.optional("up"))
         camera.up = v->unit_direction();
     if (auto v = reader.optional("fov_deg"))
         camera.fov_deg = v->in_open(0.0f, 180.0f);
     reader.finish();
     const Vec3 forward = camera.look_at - camera.position;
-    if (!(glm::length(forward) > 0.0f))
+    const float distance = glm::length(forward);
+    if (!(distance > 0.0f)) {
+        // Distinct in double but not in float: the squared distance underflowed.
+        if (glm::length(DVec3(camera.look_at) - DVec3(camera.position)) > 0.0)
+            node.fail("position and look_at are too close together for single precision");
         node.fail("position and look_at must differ");
+    }
+    if (!std::isfinite(distance))
+        node.fail("position and look_at are too far apart for single precision");
     if (!(glm::length(glm::cross(glm::normalize(forward), camera.up)) > 1e-6f)) {
         node.fail("up must not be parallel to the view direction");
     }

@@ -26,8 +26,8 @@ std::string known_names(const std::map<std::string, uint32_t>& materials) {
 
 SphereShape parse_sphere(JsonObjectReader& reader) {
     SphereShape s;
-    s.center = reader.required("center").as_vec3();
-    s.radius = reader.required("radius").positive();
+    s.center = reader.required("center").as_point();
+    s.radius = reader.required("radius").positive_length();
     return s;
 }
 
@@ -39,7 +39,7 @@ QuadShape parse_quad(JsonObjectReader& reader) {
     DVec3 v[4];
     double max_coordinate = 0.0;
     for (size_t i = 0; i < 4; ++i) {
-        q.vertices[i] = node.child(i).as_vec3();
+        q.vertices[i] = node.child(i).as_point();
         v[i] = DVec3(q.vertices[i]);
         for (int axis = 0; axis < 3; ++axis)
             max_coordinate = std::max(max_coordinate, std::abs(v[i][axis]));
@@ -70,9 +70,9 @@ QuadShape parse_quad(JsonObjectReader& reader) {
 
 BoxShape parse_box(JsonObjectReader& reader) {
     BoxShape b;
-    b.min = reader.required("min").as_vec3();
+    b.min = reader.required("min").as_point();
     const JsonNode max_node = reader.required("max");
-    b.max = max_node.as_vec3();
+    b.max = max_node.as_point();
     if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z))
         max_node.fail("must exceed \"min\" on every axis");
     return b;
@@ -88,7 +88,7 @@ MeshShape parse_mesh(JsonObjectReader& reader, const std::string& base_dir) {
     Vec3 translate(0.0f);
     float scale = 1.0f;
     if (const auto t = reader.optional("translate"))
-        translate = t->as_vec3();
+        translate = t->as_point();
     if (const auto s = reader.optional("scale"))
         scale = s->positive();
     try {
@@ -97,8 +97,14 @@ MeshShape parse_mesh(JsonObjectReader& reader, const std::string& base_dir) {
         file.fail(e.what());
     }
     // A uniform positive scale and a translation leave unit normals unchanged.
-    for (Vec3& p : m.mesh.positions)
+    for (Vec3& p : m.mesh.positions) {
         p = scale * p + translate;
+        if (!(std::abs(p.x) <= kMaxCoordinateM && std::abs(p.y) <= kMaxCoordinateM &&
+              std::abs(p.z) <= kMaxCoordinateM))
+            file.fail(
+                "a scaled and translated vertex lies beyond +-1e12 m (single precision "
+                "breaks down beyond)");
+    }
     return m;
 }
 

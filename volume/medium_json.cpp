@@ -18,7 +18,7 @@ HomogeneousMedium parse_homogeneous(JsonObjectReader& reader) {
     if (auto bounds = reader.optional("bounds")) {
         if (!bounds->is_array() || bounds->size() != 2)
             bounds->fail("expected [min, max]");
-        Bounds3 b{bounds->child(0).as_vec3(), bounds->child(1).as_vec3()};
+        Bounds3 b{bounds->child(0).as_point(), bounds->child(1).as_point()};
         if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z)) {
             bounds->fail("min must be below max on every axis");
         }
@@ -37,7 +37,7 @@ glm::dmat4 parse_transform(const JsonNode& node) {
     JsonObjectReader reader(node);
     glm::dmat4 m(1.0);
     if (auto v = reader.optional("translate"))
-        m = glm::translate(m, glm::dvec3(v->as_vec3()));
+        m = glm::translate(m, glm::dvec3(v->as_point()));
     if (auto v = reader.optional("rotate")) {
         const glm::dvec3 deg(v->as_vec3());
         m = glm::rotate(m, glm::radians(deg.z), glm::dvec3(0, 0, 1));
