@@ -197,12 +197,19 @@ IesProfile parse_ies(const std::string& text, const std::string& file) {
             NumberStream::format(h.front()) + " to " + NumberStream::format(h1));
 
     const double scale = multiplier * ballast * ballast_lamp;
-    std::vector<float> cd(static_cast<size_t>(n_vertical) * static_cast<size_t>(n_horizontal));
-    for (float& c : cd) {
+    // Grown as values are read, not sized from the header: a corrupt count (up to 1e10 values)
+    // then ends in "file ends before candela values", not in an allocation failure.
+    const size_t n_values = static_cast<size_t>(n_vertical) * static_cast<size_t>(n_horizontal);
+    std::vector<float> cd;
+    while (cd.size() < n_values) {
         const double v = numbers.next("candela values");
         if (v < 0.0)
             numbers.fail("candela values must be >= 0, got " + NumberStream::format(v));
-        c = static_cast<float>(v * scale);
+        const float c = static_cast<float>(v * scale);
+        if (!std::isfinite(c))
+            numbers.fail("candela value " + NumberStream::format(v) + " times the multiplier " +
+                         "and ballast factors overflows single precision");
+        cd.push_back(c);
         p.max_candela = std::max(p.max_candela, c);
     }
     if (!numbers.at_end())
