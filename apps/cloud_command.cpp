@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 
@@ -30,7 +31,12 @@ void add_make_cloud_command(CLI::App& root) {
     cmd->add_option("--size-m", options->size_m,
                     "edge of the cloud's cube in metres (default 1000); the cube spans "
                     "x, z in [-size/2, size/2] and y in [0, size]")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Validator(
+            [](std::string& text) {  // PositiveNumber lets nan and 1e39 (inf as float) through
+                const double v = std::strtod(text.c_str(), nullptr);
+                return v > 0.0 && v <= 1e12 ? std::string() : "must be in (0, 1e12] m";
+            },
+            "(0, 1e12]"));
     cmd->add_option("-o,--output", options->output, "the .vdb to write")->required();
     cmd->add_flag("-q,--quiet", options->quiet, "no summary on stderr");
     cmd->callback([options] {

@@ -3,10 +3,12 @@
 #include "apps/illuminance_command.h"
 #include "apps/output_writer.h"
 #include "apps/scene_options.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "render/animation.h"
 #include "render/probe.h"
 #include "render/renderer.h"
+#include "render/sequence_cache.h"
 #include "volume/transmittance.h"
 
 #include <atomic>
@@ -17,6 +19,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace kasumi {
@@ -50,6 +53,20 @@ void set_command_exit_code(int code) {
 }
 std::string version_string() {
     return "kasumi 0.1.0";
+}
+
+void check_output_writable(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw_output_error(path + ": is a directory, expected a file name");
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) {
+        std::filesystem::create_directories(parent, ec);
+        if (ec)
+            throw_output_error(path + ": cannot create directory " + parent.string() + ": " +
+                               ec.message());
+    }
+    const AtomicFile probe(path);  // creates and, unused, removes a temporary beside `path`
 }
 
 void add_render_command(CLI::App& root) {
@@ -127,6 +144,11 @@ void add_render_command(CLI::App& root) {
                     : options->preview;
         }
 
+        // Before the work: a render must not end in "cannot write" hours later.
+        check_output_writable(paths.exr);
+        if (!paths.preview.empty())
+            check_output_writable(paths.preview);
+
         const auto build_start = std::chrono::steady_clock::now();
         const SceneRuntime runtime(std::move(desc));
         times.build_s = seconds_since(build_start);
@@ -187,6 +209,37 @@ void add_plan_command(CLI::App& root) {
     });
 }
 
+namespace {
+
+/// An animated scene is valid at frame 0 (SceneOptions::load) and must be at every key frame
+/// too, or `sequence` would fail midway; files are read once (SequenceCache).
+void check_key_frames(const SceneOptions& options) {
+    std::vector<Override> overrides;
+    for (const std::string& s : options.sets)
+        overrides.push_back(parse_override(s));
+    Json root = read_json_file(options.scene_path);
+    apply_overrides(root, overrides, options.scene_path);
+    std::set<int64_t> frames;
+    for (const Track& track : parse_animation(root, options.scene_path).tracks) {
+        for (const Keyframe& key : track.keys)
+            frames.insert(key.frame);
+    }
+    frames.erase(0);
+    SequenceCache cache;
+    for (const int64_t frame : frames) {
+        try {
+            parse_scene(animated_document(read_json_file(options.scene_path), overrides, frame,
+                                          options.scene_path),
+                        options.scene_path, &cache);
+        } catch (const Error& e) {
+            throw Error(e.kind(), std::string(e.what()) + " (at key frame " +
+                                      std::to_string(frame) + " of /animate)");
+        }
+    }
+}
+
+}  // namespace
+
 void add_check_command(CLI::App& root) {
     auto options = std::make_shared<SceneOptions>();
     CLI::App* cmd =
@@ -194,6 +247,7 @@ void add_check_command(CLI::App& root) {
     options->add_to(*cmd);
     cmd->callback([options] {
         const SceneDesc desc = options->load();
+        check_key_frames(*options);
         if (!options->quiet) {
             std::cout << desc.file << ": ok (" << desc.shapes.size() << " shapes, "
                       << desc.lights.size() << " lights, " << desc.media.size() << " media, "

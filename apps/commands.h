@@ -18,4 +18,8 @@ void set_command_exit_code(int code);
 
 std::string version_string();
 
+/// Fails with ErrorKind::Output, before any work, if `path` cannot be written: it is a
+/// directory, or its directory cannot be created or take a new file. Creates the directory.
+void check_output_writable(const std::string& path);
+
 }  // namespace kasumi
