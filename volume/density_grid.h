@@ -23,11 +23,23 @@ struct BrickSpan {
     float density_min = 0.0f;  ///< <= every trilinear density value inside the brick
 };
 
+/// One allocated brick as the trackers see it: its 9³ voxels and the index-space position of
+/// its voxel (0, 0, 0), so a lookup inside it needs no brick-table read.
+struct BrickRef {
+    const float* voxels = nullptr;
+    Vec3 lower{0.0f};
+};
+
 class DensityGrid {
   public:
     static constexpr int kBrick = 8;            ///< cells per brick edge
     static constexpr int kStored = kBrick + 1;  ///< voxels per stored brick edge (with apron)
     static constexpr int kBrickVoxels = kStored * kStored * kStored;
+    /// Sub-blocks per brick edge: the trackers' walk bounds the density per sub-block of
+    /// kSubCells³ cells (finer than per brick: fewer null collisions, a smaller residual).
+    static constexpr int kSub = 2;
+    static constexpr int kSubCells = kBrick / kSub;
+    static constexpr int kSubBlocks = kSub * kSub * kSub;
 
     DensityGrid() = default;
     /// An empty grid able to hold voxels with indices in [index_min, index_max] (inclusive).
@@ -49,19 +61,28 @@ class DensityGrid {
         const int32_t brick = m_brick_index[brick_slot(c >> 3)];
         if (brick < 0)
             return 0.0f;
-        const Vec3 f = q - qf;
-        const IVec3 l = c & (kBrick - 1);
-        const float* v = &m_voxels[static_cast<size_t>(brick) * kBrickVoxels] +
-                         (l.x + kStored * (l.y + kStored * l.z));
-        constexpr int dy = kStored, dz = kStored * kStored;
-        const float x00 = v[0] + f.x * (v[1] - v[0]);
-        const float x10 = v[dy] + f.x * (v[dy + 1] - v[dy]);
-        const float x01 = v[dz] + f.x * (v[dz + 1] - v[dz]);
-        const float x11 = v[dz + dy] + f.x * (v[dz + dy + 1] - v[dz + dy]);
-        const float y0 = x00 + f.y * (x10 - x00);
-        const float y1 = x01 + f.y * (x11 - x01);
-        return y0 + f.z * (y1 - y0);
+        return trilinear(&m_voxels[static_cast<size_t>(brick) * kBrickVoxels], c & (kBrick - 1),
+                         q - qf);
     }
+
+    /// Trilinear density at an index-space point known to lie in brick `b` (the brick a walk
+    /// visit names). A point a rounding error outside the brick is clamped onto its faces, so
+    /// the value always lies within the brick's bounds. Never throws.
+    static float density_in(const BrickRef& b, const Vec3& p_index) {
+        const Vec3 q = glm::clamp(p_index - b.lower, Vec3(0.0f), Vec3(static_cast<float>(kBrick)));
+        const Vec3 qf = glm::min(glm::floor(q), Vec3(static_cast<float>(kBrick - 1)));
+        return trilinear(b.voxels, IVec3(qf), q - qf);
+    }
+
+    /// Walks the index-space ray o + t d, t in [t0, t1], in order through the non-empty bricks
+    /// (3D DDA over bricks, Amanatides & Woo 1987) and, inside each brick whose density is not
+    /// constant, through its kSub³ sub-blocks (a second DDA), calling
+    /// visit(const BrickSpan& span, const BrickRef& brick) for each stretch with non-zero
+    /// bounds: span's bounds are the sub-block's (or the constant brick's). Stops, returning
+    /// false, as soon as visit returns false: nothing past that point is walked. t keeps the
+    /// caller's units.
+    template <class Visit>
+    bool walk(const Vec3& o_index, const Vec3& d_index, float t0, float t1, Visit&& visit) const;
 
     /// Appends, in order, the spans of the index-space ray o + t d, t in [t0, t1], that lie in
     /// non-empty bricks (3D DDA over bricks, Amanatides & Woo 1987). t keeps the caller's units.
@@ -77,9 +98,24 @@ class DensityGrid {
     Vec3 lower() const { return m_origin_f; }
     Vec3 upper() const { return m_origin_f + Vec3(m_bricks * kBrick); }
 
-  private:
-    friend class DensityGridBuilder;  // volume/density_grid_build.h: parallel construction
+    /// Bounds of the density in sub-block s (0 .. kSubBlocks - 1, x fastest) of allocated
+    /// brick `storage`: exact extremes of its (kSubCells + 1)³ voxels.
+    float sub_max(size_t storage, int s) const { return m_sub_max[storage * kSubBlocks + s]; }
+    float sub_min(size_t storage, int s) const { return m_sub_min[storage * kSubBlocks + s]; }
 
+  private:
+    /// Trilinear interpolation in the cell at local index l of a brick's 9³ voxels, fractions f.
+    static float trilinear(const float* brick, IVec3 l, Vec3 f) {
+        const float* v = brick + (l.x + kStored * (l.y + kStored * l.z));
+        constexpr int dy = kStored, dz = kStored * kStored;
+        const float x00 = v[0] + f.x * (v[1] - v[0]);
+        const float x10 = v[dy] + f.x * (v[dy + 1] - v[dy]);
+        const float x01 = v[dz] + f.x * (v[dz + 1] - v[dz]);
+        const float x11 = v[dz + dy] + f.x * (v[dz + dy + 1] - v[dz + dy]);
+        const float y0 = x00 + f.y * (x10 - x00);
+        const float y1 = x01 + f.y * (x11 - x01);
+        return y0 + f.z * (y1 - y0);
+    }
     size_t brick_slot(IVec3 b) const {
         return static_cast<size_t>(b.x) +
                static_cast<size_t>(m_bricks.x) *
@@ -95,8 +131,103 @@ class DensityGrid {
     std::vector<float> m_voxels;         ///< kBrickVoxels floats per allocated brick
     std::vector<float> m_brick_max;      ///< per brick slot
     std::vector<float> m_brick_min;      ///< per brick slot
+    std::vector<float> m_sub_max;        ///< kSubBlocks per allocated brick
+    std::vector<float> m_sub_min;        ///< kSubBlocks per allocated brick
     size_t m_allocated = 0;
     float m_max_density = 0.0f;
 };
+
+template <class Visit>
+bool DensityGrid::walk(const Vec3& o_index, const Vec3& d_index, float t0, float t1,
+                       Visit&& visit) const {
+    if (m_allocated == 0 || !(t1 > t0))
+        return true;
+    // Brick space: brick b covers [b, b + 1) per axis.
+    const Vec3 p = (o_index - m_origin_f) * (1.0f / kBrick);
+    const Vec3 d = d_index * (1.0f / kBrick);
+    const Vec3 n(m_bricks);
+    float ta = t0, tb = t1;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) {
+            if (!(p[a] >= 0.0f && p[a] < n[a]))
+                return true;
+            continue;
+        }
+        const float inv = 1.0f / d[a];
+        float near = (0.0f - p[a]) * inv, far = (n[a] - p[a]) * inv;
+        if (near > far)
+            std::swap(near, far);
+        ta = std::max(ta, near);
+        tb = std::min(tb, far);
+    }
+    if (!(tb > ta))
+        return true;
+    IVec3 cell = glm::clamp(IVec3(glm::floor(p + d * ta)), IVec3(0), m_bricks - IVec3(1));
+    IVec3 step(0);
+    Vec3 t_next(kInfinity), t_delta(0.0f);
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] > 0.0f) {
+            step[a] = 1;
+            t_next[a] = (static_cast<float>(cell[a] + 1) - p[a]) / d[a];
+            t_delta[a] = 1.0f / d[a];
+        } else if (d[a] < 0.0f) {
+            step[a] = -1;
+            t_next[a] = (static_cast<float>(cell[a]) - p[a]) / d[a];
+            t_delta[a] = -1.0f / d[a];
+        }
+    }
+    // Sub-block space inside a brick: the ray is ps + t ds with ps = (p - cell) kSub.
+    const Vec3 ds = d * static_cast<float>(kSub);
+    for (float t = ta; t < tb;) {
+        const int axis =
+            t_next.x <= t_next.y ? (t_next.x <= t_next.z ? 0 : 2) : (t_next.y <= t_next.z ? 1 : 2);
+        const float t_exit = std::min(t_next[axis], tb);
+        const size_t slot = brick_slot(cell);
+        const int32_t storage = m_brick_index[slot];
+        if (storage >= 0 && t_exit > t && m_brick_max[slot] > 0.0f) {
+            const BrickRef brick{&m_voxels[static_cast<size_t>(storage) * kBrickVoxels],
+                                 m_origin_f + Vec3(cell * kBrick)};
+            if (m_brick_max[slot] == m_brick_min[slot]) {
+                // Constant brick: one span, no sub-blocks to walk.
+                if (!visit(BrickSpan{t, t_exit, m_brick_max[slot], m_brick_min[slot]}, brick))
+                    return false;
+            } else {
+                const Vec3 ps = (p - Vec3(cell)) * static_cast<float>(kSub);
+                IVec3 sub = glm::clamp(IVec3(glm::floor(ps + ds * t)), IVec3(0), IVec3(kSub - 1));
+                Vec3 s_next(kInfinity);
+                for (int a = 0; a < 3; ++a) {
+                    if (step[a] != 0)
+                        s_next[a] =
+                            (static_cast<float>(sub[a] + (step[a] > 0 ? 1 : 0)) - ps[a]) / ds[a];
+                }
+                for (float u = t; u < t_exit;) {
+                    const int b = s_next.x <= s_next.y ? (s_next.x <= s_next.z ? 0 : 2)
+                                                       : (s_next.y <= s_next.z ? 1 : 2);
+                    const float u_exit = std::min(s_next[b], t_exit);
+                    const int s = sub.x + kSub * (sub.y + kSub * sub.z);
+                    const size_t k = static_cast<size_t>(storage) * kSubBlocks + s;
+                    if (u_exit > u && m_sub_max[k] > 0.0f &&
+                        !visit(BrickSpan{u, u_exit, m_sub_max[k], m_sub_min[k]}, brick))
+                        return false;
+                    u = std::max(u, u_exit);
+                    sub[b] += step[b];
+                    s_next[b] += t_delta[b] * (1.0f / kSub);
+                    if (sub[b] < 0 || sub[b] >= kSub) {
+                        // Left the brick a rounding error before t_exit: finish in the last
+                        // sub-block along this axis (the loop ends once u reaches t_exit).
+                        sub[b] -= step[b];
+                        s_next[b] = kInfinity;
+                    }
+                }
+            }
+        }
+        t = std::max(t, t_exit);
+        cell[axis] += step[axis];
+        if (cell[axis] < 0 || cell[axis] >= m_bricks[axis])
+            break;
+        t_next[axis] += t_delta[axis];
+    }
+    return true;
+}
 
 }  // namespace kasumi

@@ -93,6 +93,7 @@ MediumSet::MediumSet(std::vector<Medium> media)
             f.world_to_index = v->world_to_index;
             f.sigma_t = v->sigma_t_per_density();
             f.sigma_s = v->sigma_s_per_density;
+            f.bounds_world = v->bounds_world;
             if (v->temperature && max_component(v->sigma_a_per_density) > 0.0f)
                 m_emits = true;
         } else {

@@ -114,11 +114,17 @@ class MediumSet {
     struct FastMedium {
         const DensityGrid* grid = nullptr;
         Mat4 world_to_index{1.0f};
-        Rgb sigma_t{0.0f};   ///< 1/m (per unit density for a grid)
-        Rgb sigma_s{0.0f};   ///< 1/m (per unit density for a grid)
-        bool other = false;  ///< another kind of medium: queried through coefficients()
+        Rgb sigma_t{0.0f};     ///< 1/m (per unit density for a grid)
+        Rgb sigma_s{0.0f};     ///< 1/m (per unit density for a grid)
+        bool other = false;    ///< another kind of medium: queried through coefficients()
+        Bounds3 bounds_world;  ///< a grid's world box holding every non-zero density
     };
     const FastMedium& fast(uint32_t k) const { return m_fast[k]; }
+    /// The medium when the set is exactly one grid medium, else null: the trackers then walk
+    /// the grid's bricks and sub-blocks lazily (volume/majorant_walk.h).
+    const FastMedium* single_grid() const {
+        return m_fast.size() == 1 && m_fast[0].grid != nullptr ? &m_fast[0] : nullptr;
+    }
 
     /// Lights whose transmittance can be cached (render.volume.light_cache).
     static constexpr size_t kMaxCachedLights = 8;
@@ -163,6 +169,12 @@ class RayMediaQuery {
     float density(uint32_t k, float t) const {
         const MediumSet::FastMedium& m = m_media.fast(k);
         return m.grid->density(m_origin[k] + t * m_direction[k]);
+    }
+
+    /// Density of grid medium k at distance t, a point inside `brick` of its grid (a walk's
+    /// visit names it): no brick-table read.
+    float density_in(uint32_t k, const BrickRef& brick, float t) const {
+        return DensityGrid::density_in(brick, m_origin[k] + t * m_direction[k]);
     }
 
     /// sigma_t and sigma_s at distance t, summing the media in `mask` (a segment's media_mask).

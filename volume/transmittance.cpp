@@ -1,5 +1,6 @@
 #include "volume/transmittance.h"
 
+#include "volume/majorant_walk.h"
 #include "volume/march_walk.h"
 
 #include <cmath>
@@ -12,28 +13,62 @@ namespace {
 constexpr float kRouletteWeight = 0.05f;
 /// Beyond this optical depth in every channel the march reports 0 (exp(-60) ~ 1e-26).
 constexpr double kOpaqueDepth = 60.0;
+/// exp(-110) ~ 1.7e-48 is 0 in float (the smallest subnormal is 1.4e-45).
+constexpr double kUnderflowDepth = 110.0;
 
 float mean(const Rgb& c) {
     return (c.r + c.g + c.b) * (1.0f / 3.0f);
 }
 
-/// Exponential step with rate mu; u in [0, 1) so 1 - u > 0 and the log is finite.
-float exponential_step(float mu, Pcg32& rng) {
-    return -std::log1p(-rng.next_float()) / mu;
+/// A unit exponential variate; u in [0, 1) is a multiple of 2^-24, so 1 - u is exact and > 0.
+float unit_exponential(Pcg32& rng) {
+    return -std::log(1.0f - rng.next_float());
 }
 
-/// Calls at(t) at each tentative collision of a Poisson process of rate mu over [s.t0, s.t1),
-/// in order, while it returns true. Returns false if `at` stopped the walk. By memorylessness,
-/// restarting the process at each segment's start is exact.
-template <class At>
-bool walk_collisions(const MajorantSegment& s, float mu, Pcg32& rng, At&& at) {
-    for (float t = s.t0;;) {
-        t += exponential_step(mu, rng);
-        if (!(t < s.t1))
-            return true;
-        if (!at(t))
-            return false;
+/// The tentative collisions of a Poisson process whose rate is piecewise constant (each majorant
+/// segment's mu in turn), sampled in optical depth: each collision draws one unit exponential
+/// E and the segments consume it, the collision lying where the integral of mu reaches E.
+/// Exact for any sequence of segments, and a segment's end costs no random number (restarting
+/// the process at every segment, also exact by memorylessness, drew one variate per segment
+/// only to throw it away at the segment's end).
+class Collisions {
+  public:
+    explicit Collisions(Pcg32& rng) : m_rng(rng) {}
+
+    /// Calls at(t) at each collision in [t0, t1) of rate mu > 0, in order, while it returns
+    /// true. Returns false if `at` stopped the walk.
+    template <class At>
+    bool walk(float t0, float t1, float mu, At&& at) {
+        if (m_left < 0.0f)
+            m_left = unit_exponential(m_rng);  // drawn on the first segment that has a rate
+        for (float t = t0;;) {
+            const float depth = std::max(t1 - t, 0.0f) * mu;
+            if (!(m_left < depth)) {
+                m_left -= depth;
+                return true;
+            }
+            t += m_left / mu;
+            m_left = unit_exponential(m_rng);
+            if (!at(t))
+                return false;
+        }
     }
+
+  private:
+    Pcg32& m_rng;
+    float m_left = -1.0f;  ///< optical depth (rate-1 units) left to the next collision
+};
+
+/// sigma_t and sigma_s at distance t on segment s: from the brick the walk named (one grid
+/// medium: no brick-table read), else summed over the segment's media.
+PointCoefficients coefficients_at(const MediumSet& media, const RayMediaQuery& query,
+                                  const MajorantSegment& s, const BrickRef* brick, float t) {
+    if (brick != nullptr) {
+        const MediumSet::FastMedium& m = media.fast(0);
+        const float d = query.density_in(0, *brick, t);
+        return {m.sigma_t * d, m.sigma_s * d};
+    }
+    return query.coefficients(t, s.media_mask);
 }
 
 Rgb march(const MediumSet& media, const Ray& ray, float step_m,
@@ -47,74 +82,82 @@ Rgb march(const MediumSet& media, const Ray& ray, float step_m,
 }
 
 /// Delta tracking of one channel: 1 if the walk crosses without a real collision, else 0.
-float delta_channel(const RayMediaQuery& media, int c, const std::vector<MajorantSegment>& segments,
+float delta_channel(const MediumSet& media, const RayMediaQuery& query, const Ray& ray, int c,
                     Pcg32& rng, VolumeCounters& counters) {
-    for (const MajorantSegment& s : segments) {
-        const float mu = s.sigma_max[c];
-        if (!(mu > 0.0f))
-            continue;
-        const bool crossed = walk_collisions(s, mu, rng, [&](float t) {
-            const float sigma = media.coefficients(t, s.media_mask).sigma_t[c];
-            ++counters.density_lookups;
-            return !(rng.next_float() * mu < sigma);  // a real collision ends the walk
+    Collisions collisions(rng);
+    const bool crossed =
+        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+            const float mu = s.sigma_max[c];
+            if (!(mu > 0.0f))
+                return true;
+            return collisions.walk(s.t0, s.t1, mu, [&](float t) {
+                const float sigma = coefficients_at(media, query, s, brick, t).sigma_t[c];
+                ++counters.density_lookups;
+                return !(rng.next_float() * mu < sigma);  // a real collision ends the walk
+            });
         });
-        if (!crossed)
-            return 0.0f;
-    }
-    return 1.0f;
+    return crossed ? 1.0f : 0.0f;
 }
 
-Rgb delta(const MediumSet& media, const Ray& ray, const std::vector<MajorantSegment>& segments,
-          Pcg32& rng, VolumeCounters& counters) {
+Rgb delta(const MediumSet& media, const Ray& ray, Pcg32& rng, VolumeCounters& counters) {
     const RayMediaQuery query(media, ray);
-    const float r = delta_channel(query, 0, segments, rng, counters);
+    const float r = delta_channel(media, query, ray, 0, rng, counters);
     if (media.grey_extinction())
         return Rgb(r);
-    return Rgb(r, delta_channel(query, 1, segments, rng, counters),
-               delta_channel(query, 2, segments, rng, counters));
+    return Rgb(r, delta_channel(media, query, ray, 1, rng, counters),
+               delta_channel(media, query, ray, 2, rng, counters));
 }
 
 /// Ratio tracking (Novák et al. 2014, "Residual Ratio Tracking for Estimating Attenuation in
 /// Participating Media", ACM TOG 33(6), Alg. 2) of sigma_t - control over each segment, with
 /// the scalar majorant max_c(sigma_max - control); control = 0 gives plain ratio tracking,
 /// control = minorant the residual form (the control's exp(-integral) is exact).
-Rgb ratio(const MediumSet& media, const Ray& ray, const std::vector<MajorantSegment>& segments,
-          bool residual, Pcg32& rng, VolumeCounters& counters) {
+Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
+          VolumeCounters& counters) {
     const RayMediaQuery query(media, ray);
     Rgb weight(1.0f);
     glm::dvec3 control_depth(0.0);
-    for (const MajorantSegment& s : segments) {
-        const Rgb control = residual ? s.sigma_min : Rgb(0.0f);
-        if (residual) {
-            for (int c = 0; c < 3; ++c)
-                if (control[c] > 0.0f)
-                    control_depth[c] += static_cast<double>(control[c]) * (s.t1 - s.t0);
-        }
-        // The control's transmittance so far (exact); it scales the roulette threshold.
-        const Rgb t_control(glm::exp(-control_depth));
-        if (max_component(weight * t_control) == 0.0f)
-            return Rgb(0.0f);
-        const float mu = max_component(s.sigma_max - control);
-        if (!(mu > 0.0f))
-            continue;
-        const bool alive = walk_collisions(s, mu, rng, [&](float t) {
-            const Rgb sigma = query.coefficients(t, s.media_mask).sigma_t;
-            ++counters.density_lookups;
-            // sigma - control <= mu up to rounding; the clamp only guards rounding.
-            weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
-            // Russian roulette once the estimate is small: unbiased, bounds the walk length.
-            const float w = max_component(weight * t_control);
-            if (w < kRouletteWeight) {
-                const float survive = w / kRouletteWeight;
-                if (!(rng.next_float() < survive))
+    Collisions collisions(rng);
+    const bool alive =
+        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+            const Rgb control = residual ? s.sigma_min : Rgb(0.0f);
+            if (residual) {
+                bool gone = true;
+                for (int c = 0; c < 3; ++c) {
+                    if (control[c] > 0.0f)
+                        control_depth[c] += static_cast<double>(control[c]) * (s.t1 - s.t0);
+                    gone = gone && (weight[c] == 0.0f || control_depth[c] > kUnderflowDepth);
+                }
+                // The result, weight exp(-control depth) in float, is already 0.
+                if (gone)
                     return false;
-                weight /= survive;
             }
-            return true;
+            const float mu = max_component(s.sigma_max - control);
+            if (!(mu > 0.0f))
+                return true;
+            // The control's transmittance so far (exact) scales the roulette threshold; taken
+            // once per segment, at its first collision.
+            Rgb t_control(-1.0f);
+            return collisions.walk(s.t0, s.t1, mu, [&](float t) {
+                const Rgb sigma = coefficients_at(media, query, s, brick, t).sigma_t;
+                ++counters.density_lookups;
+                // sigma - control <= mu up to rounding; the clamp only guards rounding.
+                weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
+                if (t_control.r < 0.0f)
+                    t_control = Rgb(glm::exp(-control_depth));
+                // Russian roulette once the estimate is small: unbiased, bounds the walk length.
+                const float w = max_component(weight * t_control);
+                if (w < kRouletteWeight) {
+                    const float survive = w / kRouletteWeight;
+                    if (!(rng.next_float() < survive))
+                        return false;
+                    weight /= survive;
+                }
+                return true;
+            });
         });
-        if (!alive)
-            return Rgb(0.0f);
-    }
+    if (!alive)
+        return Rgb(0.0f);
     return weight * Rgb(glm::exp(-control_depth));
 }
 
@@ -153,19 +196,20 @@ float march_step_m(const MediumSet& media, const VolumeSettings& settings) {
 Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator estimator,
                            float step_m, Pcg32& rng, VolumeCounters& counters) {
     ++counters.transmittance_estimates;
-    thread_local std::vector<MajorantSegment> segments;
-    media.majorants(ray, segments);
-    if (segments.empty())
-        return Rgb(1.0f);
     switch (estimator) {
-        case Estimator::March:
+        case Estimator::March: {
+            thread_local std::vector<MajorantSegment> segments;
+            media.majorants(ray, segments);
+            if (segments.empty())
+                return Rgb(1.0f);
             return march(media, ray, step_m, segments, rng, counters);
+        }
         case Estimator::Delta:
-            return delta(media, ray, segments, rng, counters);
+            return delta(media, ray, rng, counters);
         case Estimator::Ratio:
-            return ratio(media, ray, segments, false, rng, counters);
+            return ratio(media, ray, false, rng, counters);
         case Estimator::ResidualRatio:
-            return ratio(media, ray, segments, true, rng, counters);
+            return ratio(media, ray, true, rng, counters);
     }
     return Rgb(1.0f);
 }
@@ -173,17 +217,16 @@ Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator est
 FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb& throughput,
                               Pcg32& rng, VolumeCounters& counters) {
     ++counters.free_flights;
-    thread_local std::vector<MajorantSegment> segments;
-    media.majorants(ray, segments);
     const RayMediaQuery query(media, ray);
     const bool emits = media.emits();
     FreeFlight flight;
-    for (const MajorantSegment& s : segments) {
+    Collisions collisions(rng);
+    walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
         const float mu = max_component(s.sigma_max);
         if (!(mu > 0.0f))
-            continue;
-        const bool passed = walk_collisions(s, mu, rng, [&](float t) {
-            const PointCoefficients k = query.coefficients(t, s.media_mask);
+            return true;
+        return collisions.walk(s.t0, s.t1, mu, [&](float t) {
+            const PointCoefficients k = coefficients_at(media, query, s, brick, t);
             ++counters.density_lookups;
             if (emits)
                 flight.emitted +=
@@ -208,9 +251,7 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
             flight.weight *= sigma_n * ((p_s + p_n) / (mu * p_n));
             return true;
         });
-        if (!passed)
-            return flight;
-    }
+    });
     return flight;
 }
 
