@@ -18,6 +18,24 @@ std::pair<size_t, float> bracket(const std::vector<float>& angles, float x) {
 
 }  // namespace
 
+float ies_tilt_multiplier(const IesProfile& profile, float tilt_deg) {
+    const std::vector<float>& a = profile.tilt.angle_deg;
+    const std::vector<float>& m = profile.tilt.multiplier;
+    if (a.empty())
+        return 1.0f;
+    float t = std::clamp(tilt_deg, 0.0f, 180.0f);
+    // A table measured up to 90° at most: above 90° the lamp axis makes the angle 180° − t with
+    // the vertical (as ies2rad's tilt_ang2 in Radiance folds it).
+    if (a.back() <= 90.0f && t > 90.0f)
+        t = 180.0f - t;
+    if (a.size() == 1 || t <= a.front())
+        return m.front();
+    if (t >= a.back())
+        return m.back();
+    const auto [i, w] = bracket(a, t);
+    return m[i] + w * (m[i + 1] - m[i]);
+}
+
 float ies_candela(const IesProfile& profile, float vertical_deg, float horizontal_deg) {
     const std::vector<float>& v = profile.vertical_deg;
     if (!(vertical_deg >= v.front() && vertical_deg <= v.back()))

@@ -88,6 +88,9 @@ GoniometricLight parse_goniometric(JsonObjectReader& reader, const Rgb& color) {
             flux->fail("cannot rescale: the IES distribution emits no flux");
         l.scale *= static_cast<float>(flux->non_negative() / table_flux);
     }
+    // The file's tilt multiplier (LM-63 TILT=INCLUDE or a tilt file) for this orientation: the
+    // tilt is the angle between the luminaire's up axis and the world's +y (docs/lights.md).
+    l.scale *= ies_tilt_multiplier(*l.profile, degrees(safe_acos(l.local_to_world[2].y)));
     return l;
 }
 
