@@ -76,8 +76,9 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
     }
     if (m_desc.sky) {
         const auto start = Clock::now();
-        m_sky = std::make_unique<SkyRenderer>(m_desc.sky, m_desc.camera.position,
-                                              std::move(sky_tables));
+        m_sky = std::make_unique<SkyRenderer>(
+            m_desc.sky, m_desc.camera.position, std::move(sky_tables),
+            make_view_frustum(m_camera, m_desc.film.width, m_desc.film.height));
         m_build_times.sky_s = since(start);
     }
     {

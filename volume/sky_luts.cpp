@@ -348,6 +348,11 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
     if (!atmosphere_segment(a, p, d, t_enter, t_exit, ground))
         return;
     const double t_end = std::min(t_exit, t_max);
+    // A segment that ends before it enters the air (a camera in space looking at something
+    // outside the atmosphere) holds none: no light, transmittance 1 (the closed form below
+    // would take its negative length).
+    if (!(t_end > t_enter))
+        return;
     const double mu = glm::dot(d, sky.sun_direction);
     const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
     Bands tau{}, ts, ms;

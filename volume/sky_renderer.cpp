@@ -8,7 +8,8 @@
 namespace kasumi {
 
 SkyRenderer::SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world,
-                         std::shared_ptr<const SkyLuts> tables)
+                         std::shared_ptr<const SkyLuts> tables,
+                         const std::optional<ViewFrustum>& frustum)
     : m_sky(std::move(sky)), m_camera(DVec3(camera_world)) {
     Bands ones{};
     for (int i = 0; i < m_sky->bands(); ++i)
@@ -19,6 +20,8 @@ SkyRenderer::SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera
         m_tables = m_tables_reused ? std::move(tables) : std::make_shared<const SkyLuts>(*m_sky);
         m_luts = std::make_unique<SkyLuts>(*m_tables);  // shares the tables
         m_luts->build_sky_view(*m_sky, m_camera);
+        if (frustum && m_sky->settings.aerial_table)
+            m_aerial = std::make_unique<AerialPerspective>(*m_sky, *m_luts, *frustum, m_white);
     }
     build_irradiance();
 }
@@ -100,6 +103,23 @@ void SkyRenderer::aerial_perspective(const Ray& ray, float t, Pcg32& rng, Rgb& r
     bool ground = false;
     if (atmosphere_segment(m_sky->atmosphere, p, d, t0, t1, ground) && ground)
         t_air = std::min(t_air, t1 * (1.0 - 1e-6));
+    if (m_aerial != nullptr && glm::length(p - m_aerial->frustum().origin) < 1e-3 &&
+        m_aerial->lookup(d, t_air, radiance, transmittance_out)) {
+        constexpr double kDepth = AerialPerspective::kDepthM;
+        if (t_air > kDepth) {
+            // Beyond the table: march the rest from its far end and compose (continuous at
+            // 32 km: the marched part starts from zero).
+            Bands lb{};
+            m_luts->march(*m_sky, p + kDepth * d, d, t_air - kDepth,
+                          std::clamp(static_cast<int>(2.0 + (t_air - kDepth) / 250.0), 2, 24), lb,
+                          tb);
+            const Rgb t_far = transmittance_rgb(tb);
+            radiance += transmittance_out * m_sky->to_rgb(lb);
+            transmittance_out *= t_far;
+        }
+        transmittance_out = glm::clamp(transmittance_out, Rgb(0.0f), Rgb(1.0f));
+        return;
+    }
     const Bands l = radiance_bands(p, d, t_air, false, rng, &tb);
     radiance = m_sky->to_rgb(l);
     transmittance_out = glm::clamp(transmittance_rgb(tb), Rgb(0.0f), Rgb(1.0f));

@@ -6,10 +6,12 @@
 #include "core/film.h"
 #include "core/rng.h"
 #include "lights/light.h"
+#include "volume/aerial_perspective.h"
 #include "volume/sky_luts.h"
 #include "volume/sky_scene.h"
 
 #include <memory>
+#include <optional>
 
 namespace kasumi {
 
@@ -21,8 +23,12 @@ class SkyRenderer {
     /// `tables` (fast mode, may be null: build them): the sun-independent tables built earlier
     /// for the same atmosphere, wavelengths and sun angular radius (see shared_tables()); the
     /// render is then bit-identical to one that builds them.
+    /// `frustum` (fast mode, may be absent): the camera's view, for which the aerial-perspective
+    /// table (volume/aerial_perspective.h) is built unless render.sky.aerial_perspective is
+    /// "march"; without it every segment is marched per pixel.
     SkyRenderer(std::shared_ptr<const SkyScene> sky, const Vec3& camera_world,
-                std::shared_ptr<const SkyLuts> tables = nullptr);
+                std::shared_ptr<const SkyLuts> tables = nullptr,
+                const std::optional<ViewFrustum>& frustum = std::nullopt);
 
     const SkyScene& sky() const { return *m_sky; }
     const SkyLuts* luts() const { return m_luts.get(); }
@@ -31,6 +37,9 @@ class SkyRenderer {
     std::shared_ptr<const SkyLuts> shared_tables() const { return m_tables; }
     /// Whether the constructor took the tables instead of building them.
     bool tables_reused() const { return m_tables_reused; }
+    /// The camera-frustum aerial-perspective table; null when not built (reference mode, no
+    /// frustum given, or render.sky.aerial_perspective "march").
+    const AerialPerspective* aerial_table() const { return m_aerial.get(); }
 
     /// Radiance of a ray that meets no surface: sky, ground of the planet and the sun's disc.
     Rgb background(const Ray& ray, Pcg32& rng) const;
@@ -42,7 +51,9 @@ class SkyRenderer {
     /// diffuse bounces: it samples the sun as a directional light).
     Rgb environment(const Ray& ray, bool sun_disc, Pcg32& rng) const;
     static constexpr double kEnvironmentNearM = 100.0;
-    /// In-scattered radiance and transmittance of the air over [0, t] of `ray`.
+    /// In-scattered radiance and transmittance of the air over [0, t] of `ray`. Camera rays
+    /// (from the camera, inside the frustum) read the aerial-perspective table up to its
+    /// 32 km and march the rest from its far end; other rays are marched per pixel.
     void aerial_perspective(const Ray& ray, float t, Pcg32& rng, Rgb& radiance,
                             Rgb& transmittance) const;
     /// Composes the sky into a camera sample: the background where the ray met nothing, and
@@ -65,6 +76,7 @@ class SkyRenderer {
     std::shared_ptr<const SkyScene> m_sky;
     std::shared_ptr<const SkyLuts> m_tables;  ///< sun independent, no sky view
     std::unique_ptr<SkyLuts> m_luts;          ///< shares m_tables' tables, plus the sky view
+    std::unique_ptr<AerialPerspective> m_aerial;
     bool m_tables_reused = false;
     DVec3 m_camera{0.0};
     Rgb m_white{1.0f};  ///< to_rgb of a flat unit spectrum (transmittance normaliser)

@@ -112,8 +112,16 @@ std::vector<SkyPlanStage> sky_plan_stages(const SkyScene* sky) {
         {"sky-luts", fast,
          fast ? "transmittance 256x64 and multiple scattering 128x32 by 4 iterated orders "
                 "(atmosphere only, built once), sky view 192x108 for this camera altitude and "
-                "sun (Hillaire 2020); aerial perspective from the tables per pixel"
+                "sun (Hillaire 2020)"
               : "render.sky.mode is \"reference\": no tables"});
+    out.push_back(
+        {"aerial-perspective", fast && s.aerial_table,
+         !fast ? "reference mode: the air in front of surfaces is marched per pixel"
+         : s.aerial_table
+             ? "camera-frustum table 32x32x32 to 32 km (slices crowded toward the camera), "
+               "built per frame, trilinear per camera ray (phases per pixel); beyond 32 km "
+               "and for secondary rays marched per pixel from the tables"
+             : "render.sky.aerial_perspective is \"march\": marched per pixel from the tables"});
     out.push_back({"sky-reference", !fast,
                    !fast ? "ray marching in double precision, " + std::to_string(s.view_steps) +
                                " view nodes, " + std::to_string(s.sun_steps) + " sun nodes, " +

@@ -20,6 +20,15 @@ void parse_sky_render_keys(JsonObjectReader& render, SkySettings& sky) {
             else
                 m->fail("expected \"reference\" or \"fast\"");
         }
+        if (const auto m = reader.optional("aerial_perspective")) {
+            const std::string name = m->as_string();
+            if (name == "table")
+                sky.aerial_table = true;
+            else if (name == "march")
+                sky.aerial_table = false;
+            else
+                m->fail("expected \"table\" or \"march\"");
+        }
         auto read_int = [](const JsonNode& n, int lo, int hi) {
             const int64_t x = n.as_int();
             if (x < lo || x > hi)

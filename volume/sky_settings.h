@@ -26,6 +26,10 @@ struct SkySettings {
     /// scattering in the air over the first `shaft_distance_m` of every camera ray, sampled at
     /// `shaft_samples` jittered strata.
     bool shafts = false;
+    /// Fast mode: aerial perspective of camera rays from the camera-frustum table
+    /// (volume/aerial_perspective.h; render.sky.aerial_perspective "table", default) or marched
+    /// per pixel ("march").
+    bool aerial_table = true;
     double shaft_distance_m = 200.0;
     int shaft_samples = 16;
 };
