@@ -27,6 +27,7 @@ struct Options {
     int threads = 0;
     std::string output;
     std::string probe, from, to, origin, direction, exact;
+    std::string time = "render";
 };
 
 /// The probe the options ask for (none without --probe); usage errors name the option.
@@ -105,6 +106,10 @@ void add_study_command(CLI::App& root) {
     cmd->add_option("--exact", options->exact,
                     "probe's exact value: R,G,B, or beer-lambert (transmittance through "
                     "homogeneous media); default: an automatic reference");
+    cmd->add_option("--time", options->time,
+                    "what is timed: render (render_image only) or build+render (also the "
+                    "scene's set-up: BVH, shadow maps, tables; rebuilt every repeat)")
+        ->check(CLI::IsMember({"render", "build+render"}));
     cmd->callback([options] {
         StudySpec spec;
         spec.scene_path = options->scene.scene_path;
@@ -134,6 +139,8 @@ void add_study_command(CLI::App& root) {
             }
         }
         spec.probe = study_probe(*options);
+        spec.timing =
+            options->time == "build+render" ? StudyTiming::BuildRender : StudyTiming::Render;
         const bool quiet = options->scene.quiet;
         const StudyResult result = run_study(spec, [quiet](const std::string& line) {
             if (!quiet)

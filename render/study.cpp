@@ -87,6 +87,81 @@ double median(std::vector<double> v) {
     return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+/// A JSON pointer token without its escapes (RFC 6901): ~1 is '/', ~0 is '~'.
+std::string unescape_token(std::string token) {
+    for (size_t p; (p = token.find("~1")) != std::string::npos;)
+        token.replace(p, 2, "/");
+    for (size_t p; (p = token.find("~0")) != std::string::npos;)
+        token.replace(p, 2, "~");
+    return token;
+}
+
+std::string escape_token(const std::string& key) {
+    std::string token;
+    for (const char c : key)
+        token += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
+    return token;
+}
+
+/// The tokens of a JSON pointer, still escaped ("/a/b" -> {"a", "b"}; "" -> {}).
+std::vector<std::string> pointer_tokens(const std::string& pointer) {
+    std::vector<std::string> tokens;
+    size_t start = 1;
+    while (start <= pointer.size() && !pointer.empty()) {
+        const size_t slash = pointer.find('/', start);
+        tokens.push_back(pointer.substr(start, slash - start));
+        if (slash == std::string::npos)
+            break;
+        start = slash + 1;
+    }
+    return tokens;
+}
+
+/// The child of `node` named by an escaped token, or null when there is none.
+const Json* child(const Json* node, const std::string& token) {
+    if (node == nullptr)
+        return nullptr;
+    if (node->is_object()) {
+        const auto it = node->find(unescape_token(token));
+        return it == node->end() ? nullptr : &*it;
+    }
+    if (node->is_array() && !token.empty() &&
+        token.find_first_not_of("0123456789") == std::string::npos && token.size() < 10) {
+        const size_t index = std::stoul(token);
+        return index < node->size() ? &(*node)[index] : nullptr;
+    }
+    return nullptr;
+}
+
+void expand_from(const Json* node, const std::vector<std::string>& tokens, size_t i,
+                 const std::string& prefix, const std::string& pointer, const std::string& file,
+                 std::vector<std::string>& out) {
+    if (i == tokens.size()) {
+        out.push_back(prefix);
+        return;
+    }
+    if (tokens[i] != "*") {
+        expand_from(child(node, tokens[i]), tokens, i + 1, prefix + "/" + tokens[i], pointer, file,
+                    out);
+        return;
+    }
+    const std::string where = prefix.empty() ? "the document" : prefix;
+    if (node != nullptr && node->is_array() && !node->empty()) {
+        for (size_t k = 0; k < node->size(); ++k) {
+            expand_from(&(*node)[k], tokens, i + 1, prefix + "/" + std::to_string(k), pointer, file,
+                        out);
+        }
+    } else if (node != nullptr && node->is_object() && !node->empty()) {
+        for (auto it = node->begin(); it != node->end(); ++it) {
+            expand_from(&it.value(), tokens, i + 1, prefix + "/" + escape_token(it.key()), pointer,
+                        file, out);
+        }
+    } else {
+        throw_input_error(file + ": " + pointer + ": '*' needs a non-empty array or object at " +
+                          where);
+    }
+}
+
 /// Creates the missing objects along `pointer` (all but its last token) so an override can set
 /// a key the scene leaves at its default.
 void create_parents(Json& root, const std::string& pointer) {
@@ -96,12 +171,7 @@ void create_parents(Json& root, const std::string& pointer) {
         const size_t slash = pointer.find('/', start);
         if (slash == std::string::npos)
             return;
-        std::string token = pointer.substr(start, slash - start);
-        // JSON pointer escapes (RFC 6901): ~1 is '/', ~0 is '~'.
-        for (size_t p; (p = token.find("~1")) != std::string::npos;)
-            token.replace(p, 2, "/");
-        for (size_t p; (p = token.find("~0")) != std::string::npos;)
-            token.replace(p, 2, "~");
+        const std::string token = unescape_token(pointer.substr(start, slash - start));
         if (!node->is_object())
             return;  // arrays and values: apply_overrides reports what is wrong
         if (!node->contains(token))
@@ -111,17 +181,42 @@ void create_parents(Json& root, const std::string& pointer) {
     }
 }
 
-std::string join_sets(const std::vector<std::string>& sets) {
+std::string join_sets(const std::vector<StudySetting>& sets) {
     std::string text;
-    for (const std::string& s : sets)
-        text += (text.empty() ? "" : " ") + s;
+    for (const StudySetting& s : sets)
+        text += (text.empty() ? "" : " ") + s.pointer + "=" + s.value;
     return text;
 }
 
+std::vector<StudySetting> settings_of(const std::vector<std::string>& sets) {
+    std::vector<StudySetting> out;
+    for (const std::string& s : sets) {
+        const Override o = parse_override(s);
+        out.push_back({o.pointer, o.value, false});
+    }
+    return out;
+}
+
+bool is_json_object(const std::string& text) {
+    try {
+        return Json::parse(text).is_object();
+    } catch (const Json::exception&) {
+        return false;
+    }
+}
+
+/// The setting of one axis pointer to one of its values (objects merge, docs/study.md).
+StudySetting axis_setting(const std::string& pointer, const std::string& value) {
+    return {pointer, value, is_json_object(value)};
+}
+
+SceneDesc load_desc(const std::string& scene_path, const std::vector<StudySetting>& sets) {
+    return parse_scene(study_document_of(scene_path, sets), scene_path);
+}
+
 std::unique_ptr<SceneRuntime> load_runtime(const std::string& scene_path,
-                                           const std::vector<std::string>& sets) {
-    return std::make_unique<SceneRuntime>(
-        parse_scene(study_document(scene_path, sets), scene_path));
+                                           const std::vector<StudySetting>& sets) {
+    return std::make_unique<SceneRuntime>(load_desc(scene_path, sets));
 }
 
 /// One configuration's measured value (an image, or a probe as a 1x1 image) and its time.
@@ -139,6 +234,20 @@ RgbPlane single_pixel(const Rgb& value) {
 
 /// Renders the scene (time: render_image only), or runs the probe with film.spp samples (time:
 /// the probe call only; estimator: the scene's render.volume.estimator).
+Measurement measure(const SceneRuntime& runtime, const StudySpec& spec, const std::string& what);
+
+/// StudyTiming::BuildRender: builds the runtime from `desc` and measures, the time including
+/// the build.
+Measurement build_and_measure(const SceneDesc& desc, const StudySpec& spec,
+                              const std::string& what) {
+    const auto start = std::chrono::steady_clock::now();
+    const SceneRuntime runtime(desc);
+    const std::chrono::duration<double> build = std::chrono::steady_clock::now() - start;
+    Measurement m = measure(runtime, spec, what);
+    m.seconds += build.count();
+    return m;
+}
+
 Measurement measure(const SceneRuntime& runtime, const StudySpec& spec, const std::string& what) {
     if (!spec.probe) {
         RenderOptions options;
@@ -288,15 +397,40 @@ std::string most_accurate_value(const StudyAxis& axis) {
     return axis.values.back();
 }
 
+std::vector<std::string> expand_wildcards(const Json& doc, const std::string& pointer,
+                                          const std::string& file) {
+    if (pointer.find('*') == std::string::npos)
+        return {pointer};
+    std::vector<std::string> out;
+    expand_from(&doc, pointer_tokens(pointer), 0, "", pointer, file, out);
+    return out;
+}
+
 Json study_document(const std::string& scene_path, const std::vector<std::string>& sets) {
+    return study_document_of(scene_path, settings_of(sets));
+}
+
+Json study_document_of(const std::string& scene_path, const std::vector<StudySetting>& settings) {
     Json doc = read_json_file(scene_path);
-    std::vector<Override> overrides;
-    for (const std::string& s : sets) {
-        overrides.push_back(parse_override(s));
-        if (doc.is_object())
-            create_parents(doc, overrides.back().pointer);
+    for (const StudySetting& s : settings) {
+        for (const std::string& pointer : expand_wildcards(doc, s.pointer, scene_path)) {
+            if (s.merge) {
+                Json::json_pointer at;
+                try {
+                    at = Json::json_pointer(pointer);
+                } catch (const Json::exception&) {
+                    throw Error(ErrorKind::Usage, "--vary " + pointer + ": invalid JSON pointer");
+                }
+                if (doc.contains(at) && doc.at(at).is_object()) {
+                    doc.at(at).merge_patch(Json::parse(s.value));
+                    continue;
+                }
+            }
+            if (doc.is_object())
+                create_parents(doc, pointer);
+            apply_overrides(doc, {Override{pointer, s.value}}, scene_path);
+        }
     }
-    apply_overrides(doc, overrides, scene_path);
     return doc;
 }
 
@@ -315,42 +449,54 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
             log(line);
     };
 
-    std::vector<std::string> base = spec.sets;
+    std::vector<StudySetting> base = settings_of(spec.sets);
     if (spec.width > 0 && spec.height > 0) {
-        base.push_back("/film/width=" + std::to_string(spec.width));
-        base.push_back("/film/height=" + std::to_string(spec.height));
+        base.push_back({"/film/width", std::to_string(spec.width)});
+        base.push_back({"/film/height", std::to_string(spec.height)});
     }
     if (spec.spp > 0)
-        base.push_back("/film/spp=" + std::to_string(spec.spp));
+        base.push_back({"/film/spp", std::to_string(spec.spp)});
 
     StudyResult result;
     result.scene = spec.scene_path;
     result.axes = spec.axes;
     result.error = spec.error;
+    result.timing = spec.timing;
+    const bool build_timed = spec.timing == StudyTiming::BuildRender;
 
-    // Load and validate every configuration before rendering anything.
+    // Load and validate every configuration before rendering anything. Timed with the build,
+    // only the parsed descriptions are kept (each repeat builds its runtime, so one
+    // configuration's shadow maps or tables are in memory at a time).
     const auto combinations = expand_combinations(spec.axes);
+    std::vector<SceneDesc> descs;
     std::vector<std::unique_ptr<SceneRuntime>> runtimes;
     int largest_spp = 1;
     for (const auto& combination : combinations) {
-        std::vector<std::string> sets = base;
+        std::vector<StudySetting> sets = base;
         StudyRow row;
         for (size_t a = 0; a < spec.axes.size(); ++a) {
             const std::string& value = spec.axes[a].values[combination[a]];
             for (const std::string& pointer : study_pointers(spec.axes[a].key))
-                sets.push_back(pointer + "=" + value);
+                sets.push_back(axis_setting(pointer, value));
             row.values.push_back(value);
             row.label += (row.label.empty() ? "" : ", ") + spec.axes[a].key + "=" + as_word(value);
         }
         if (row.label.empty())
             row.label = "scene as given";
-        runtimes.push_back(load_runtime(spec.scene_path, sets));
-        row.spp = runtimes.back()->desc().film.spp;
+        descs.push_back(load_desc(spec.scene_path, sets));
+        row.spp = descs.back().film.spp;
+        if (!build_timed)
+            runtimes.push_back(std::make_unique<SceneRuntime>(std::move(descs.back())));
         largest_spp = std::max(largest_spp, row.spp);
         result.rows.push_back(row);
     }
-    result.width = spec.probe ? 1 : runtimes.front()->desc().film.width;
-    result.height = spec.probe ? 1 : runtimes.front()->desc().film.height;
+    if (!build_timed)
+        descs.clear();
+    auto desc_of = [&](size_t c) -> const SceneDesc& {
+        return build_timed ? descs[c] : runtimes[c]->desc();
+    };
+    result.width = spec.probe ? 1 : desc_of(0).film.width;
+    result.height = spec.probe ? 1 : desc_of(0).film.height;
 
     // Reference.
     RgbPlane reference;
@@ -362,7 +508,8 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
             reference = single_pixel(*probe.exact);
             result.reference.description = "exact value given";
         } else {
-            reference = single_pixel(beer_lambert(*runtimes.front(), probe.a, probe.b));
+            const SceneRuntime runtime(desc_of(0));
+            reference = single_pixel(beer_lambert(runtime, probe.a, probe.b));
             result.reference.description =
                 "exact Beer-Lambert exp(-tau), tau integrated analytically";
         }
@@ -383,27 +530,27 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
         }
         result.reference.description = "file " + spec.reference_file;
     } else {
-        std::vector<std::string> sets = base;
-        std::vector<std::string> chosen;
+        std::vector<StudySetting> sets = base;
+        std::vector<StudySetting> chosen;
         for (const StudyAxis& a : spec.axes) {
             if (a.key == "spp")
                 continue;
             for (const std::string& pointer : study_pointers(a.key))
-                chosen.push_back(pointer + "=" + most_accurate_value(a));
+                chosen.push_back(axis_setting(pointer, most_accurate_value(a)));
         }
-        for (const std::string& s : spec.reference_sets)
+        for (const StudySetting& s : settings_of(spec.reference_sets))
             chosen.push_back(s);
         sets.insert(sets.end(), chosen.begin(), chosen.end());
         const int ref_spp =
             spec.reference_spp > 0 ? spec.reference_spp : std::max(256, 16 * largest_spp);
         const int half = std::max(1, ref_spp / 2);
-        const uint64_t seed = runtimes.front()->desc().render.seed;
+        const uint64_t seed = desc_of(0).render.seed;
         RgbPlane halves[2];
         for (int h = 0; h < 2; ++h) {
-            std::vector<std::string> half_sets = sets;
-            half_sets.push_back("/film/spp=" + std::to_string(half));
+            std::vector<StudySetting> half_sets = sets;
+            half_sets.push_back({"/film/spp", std::to_string(half)});
             // Seeds apart from the studied renders' so reference and test noise are independent.
-            half_sets.push_back("/render/seed=" + std::to_string(seed + 1000003u * (h + 1)));
+            half_sets.push_back({"/render/seed", std::to_string(seed + 1000003u * (h + 1))});
             const auto runtime = load_runtime(spec.scene_path, half_sets);
             Measurement m = measure(*runtime, spec, "reference");
             result.reference.seconds += m.seconds;
@@ -422,12 +569,13 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
 
     // Timed renders, interleaved: each repeat visits every configuration, starting one further
     // along each time, so a drift in machine load touches all configurations alike.
-    const size_t n = runtimes.size();
+    const size_t n = result.rows.size();
     for (int r = 0; r < spec.repeats; ++r) {
         for (size_t k = 0; k < n; ++k) {
             const size_t c = (k + static_cast<size_t>(r)) % n;
             StudyRow& row = result.rows[c];
-            const Measurement m = measure(*runtimes[c], spec, row.label);
+            const Measurement m = build_timed ? build_and_measure(descs[c], spec, row.label)
+                                              : measure(*runtimes[c], spec, row.label);
             row.seconds.push_back(m.seconds);
             if (row.seconds.size() == 1)
                 row.error = image_error(m.plane, reference, spec.error);

@@ -16,7 +16,11 @@ namespace kasumi {
 
 /// One varied setting: a JSON pointer into the scene (or "spp", read as /film/spp), or several
 /// joined by '+' that all take the same value (e.g. "/lights/0/samples+/lights/1/samples"),
-/// and the values it takes, each as the text of a JSON value (a bare word is a string).
+/// and the values it takes, each as the text of a JSON value (a bare word is a string). A '*'
+/// token stands for every element of the array (or member of the object) at that place
+/// ("/lights/*/samples": every light). A value that is a JSON object, for a pointer naming an
+/// object in the scene, is merged into it (JSON merge patch, RFC 7396: members replace or add,
+/// null removes) instead of replacing it, so one axis can switch several keys together.
 struct StudyAxis {
     std::string key;
     std::vector<std::string> values;
@@ -55,6 +59,22 @@ struct StudyProbe {
     bool exact_beer_lambert = false;
 };
 
+/// One setting applied to the scene document: /pointer=VALUE ('*' tokens allowed), replacing
+/// the value, or with `merge` merging a JSON object value into an existing object.
+struct StudySetting {
+    std::string pointer;
+    std::string value;
+    bool merge = false;
+};
+
+/// What a configuration's time measures.
+enum class StudyTiming {
+    Render,       ///< render_image only (scene load, BVH and precomputed tables excluded)
+    BuildRender,  ///< the scene runtime's set-up (BVH, shadow maps and volumes, media, sky and
+                  ///< GI tables) plus render_image, rebuilt for every repeat; the file's
+                  ///< parsing and reading stay excluded
+};
+
 struct StudySpec {
     std::string scene_path;
     std::vector<StudyAxis> axes;
@@ -68,6 +88,7 @@ struct StudySpec {
     std::vector<std::string> reference_sets;  ///< extra /pointer=VALUE for the reference only
     ErrorSettings error;
     std::optional<StudyProbe> probe;  ///< set: study this probe instead of rendered images
+    StudyTiming timing = StudyTiming::Render;
 };
 
 /// One configuration's measurements.
@@ -101,6 +122,7 @@ struct StudyResult {
     std::vector<StudyRow> rows;  ///< in expand_combinations order
     StudyReference reference;
     ErrorSettings error;
+    StudyTiming timing = StudyTiming::Render;
 };
 
 /// Runs the study. `log` (may be empty) receives one line per finished render. Every
@@ -110,7 +132,17 @@ StudyResult run_study(const StudySpec& spec,
                       const std::function<void(const std::string&)>& log = {});
 
 /// Scene document for one configuration: `sets` then the axis values applied to the file;
-/// missing parent objects along each pointer are created.
+/// missing parent objects along each pointer are created and '*' tokens expanded.
 Json study_document(const std::string& scene_path, const std::vector<std::string>& sets);
+
+/// As above with settings applied in order; each '*' is expanded against the document as it
+/// stands when that setting is applied. ErrorKind::Input (naming the file and pointer) if a
+/// '*' meets something that is not an array or object, or the array is empty.
+Json study_document_of(const std::string& scene_path, const std::vector<StudySetting>& settings);
+
+/// The pointers `pointer` names in `doc`: '*' tokens replaced by every index of the array (or
+/// key of the object) at that place; a pointer without '*' is returned as is.
+std::vector<std::string> expand_wildcards(const Json& doc, const std::string& pointer,
+                                          const std::string& file);
 
 }  // namespace kasumi

@@ -43,6 +43,42 @@ std::string word(const std::string& value) {
     return value;
 }
 
+/// Members of a JSON object as "key=value" joined by ", ", nested objects as "a.b=value".
+void flatten(const Json& object, const std::string& prefix, std::string& out) {
+    for (auto it = object.begin(); it != object.end(); ++it) {
+        const std::string key = prefix + it.key();
+        if (it.value().is_object() && !it.value().empty()) {
+            flatten(it.value(), key + ".", out);
+            continue;
+        }
+        out += (out.empty() ? "" : ", ") + key + "=" +
+               (it.value().is_string() ? it.value().get<std::string>() : it.value().dump());
+    }
+}
+
+/// A value as shown in tables and legends: strings without quotes, a merged object as its
+/// flattened members ("shadows=map, shadow_map.resolution=512").
+std::string shown(const std::string& value) {
+    if (!value.empty() && value.front() == '{') {
+        try {
+            const Json j = Json::parse(value);
+            if (j.is_object()) {
+                std::string out;
+                flatten(j, "", out);
+                return out.empty() ? "{}" : out;
+            }
+        } catch (const Json::exception&) {
+        }
+    }
+    return word(value);
+}
+
+/// An axis key as a legend names it: its last token, or the whole key if that is '*'.
+std::string short_key(const std::string& key) {
+    const std::string last = key.substr(key.rfind('/') + 1);
+    return last == "*" ? key : last;
+}
+
 bool has_spp_axis(const StudyResult& r) {
     for (const StudyAxis& a : r.axes) {
         if (a.key == "spp")
@@ -98,7 +134,10 @@ std::string study_markdown(const StudyResult& result) {
     else
         out << "Probe: " << result.probe << " (spp: samples averaged); time: median probe time of ";
     out << (result.rows.empty() ? 0 : result.rows[0].seconds.size())
-        << " interleaved repeats (scene load and BVH build excluded).\n";
+        << (result.timing == StudyTiming::BuildRender
+                ? " interleaved repeats, each building the scene's runtime (BVH, shadow maps and "
+                  "volumes, tables) before rendering; reading the scene file excluded.\n"
+                : " interleaved repeats (scene load and BVH build excluded).\n");
     out << "Reference: " << result.reference.description;
     if (result.reference.has_standard_error) {
         out << "; its own standard error (from the two halves): RMSE " +
@@ -130,7 +169,7 @@ std::string study_markdown(const StudyResult& result) {
         const std::string b = i == best ? "**" : "";
         out << "|";
         for (const std::string& v : row.values)
-            out << " " << b << word(v) << b << " |";
+            out << " " << b << shown(v) << b << " |";
         if (spp_column)
             out << " " << row.spp << " |";
         out << " " << g3(row.median_seconds) << " | " << g3(row.error.rmse) << " | "
@@ -148,21 +187,23 @@ std::string study_svg(const StudyResult& result) {
         (result.probe.empty() ? std::to_string(result.width) + "x" + std::to_string(result.height)
                               : result.probe) +
         ")";
-    plot.x_label = "render time, s (median)";
+    plot.x_label = result.timing == StudyTiming::BuildRender ? "build + render time, s (median)"
+                                                             : "render time, s (median)";
     plot.y_label = "relative MSE against the reference";
     const std::string along = result.axes.empty() ? "" : result.axes.back().key;
     std::map<std::string, size_t> index;
     for (const StudyRow& row : result.rows) {
         std::string name;
         for (size_t a = 0; a + 1 < row.values.size(); ++a) {
+            const std::string& v = row.values[a];
             name += (name.empty() ? "" : ", ") +
-                    result.axes[a].key.substr(result.axes[a].key.rfind('/') + 1) + "=" +
-                    word(row.values[a]);
+                    (v.empty() || v.front() != '{' ? short_key(result.axes[a].key) + "=" : "") +
+                    shown(v);
         }
         if (name.empty())
             name = along.empty() ? "scene" : "along " + along;
         else if (!along.empty())
-            name += " (along " + along.substr(along.rfind('/') + 1) + ")";
+            name += " (along " + short_key(along) + ")";
         auto it = index.find(name);
         if (it == index.end()) {
             it = index.emplace(name, plot.series.size()).first;

@@ -59,6 +59,18 @@ expect_exit 3 "fog.json: /render/volume/step_m" -- study "$work/fog.json" \
   --vary /render/volume/step_m=0.1,-1 --res 4x4 -o "$work/s3"
 [ -e "$work/s3" ] && fail "a failed study created its output directory"
 
+# '*' in a pointer, object values merged into each light, and --time build+render: one row per
+# value; a '*' that meets no array is an input error naming the file and pointer.
+expect_exit 0 "wrote" -- study "$work/fog.json" --res 6x4 --repeats 1 --reference-spp 4 \
+  --time build+render --vary '/lights/*={"intensity_cd":50},{"intensity_cd":100}' -o "$work/s4"
+grep -q "intensity_cd=50" "$work/s4/study.md" 2>/dev/null || fail "study.md lacks the merged value"
+grep -q "each building the scene's runtime" "$work/s4/study.md" 2>/dev/null ||
+  fail "study.md does not say the build is timed"
+expect_exit 3 "fog.json: /shapes/\*/x" -- study "$work/fog.json" --vary '/shapes/*/x=1,2' \
+  --res 4x4 -o "$work/s5"
+expect_exit 2 "" -- study "$work/fog.json" --vary spp=1,2 --time all -o "$work/s5"
+[ -e "$work/s5" ] && fail "a failed study created its output directory"
+
 # A probe study: transmittance against the exact Beer-Lambert value, one CSV row per estimator.
 expect_exit 0 "wrote" -- study "$work/fog.json" --probe transmittance --from 0,0,-5 --to 0,0,5 \
   --exact beer-lambert --vary /render/volume/estimator=march,ratio --spp 1000 --repeats 1 \

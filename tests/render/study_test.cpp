@@ -173,6 +173,61 @@ TEST(StudyDocument, CreatesMissingParents) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(StudyDocument, WildcardsExpandOverArraysAndObjects) {
+    const Json doc = Json::parse(R"({"lights": [{"a": 1}, {"a": 2}, {"a": 3}],
+                                     "materials": {"x/y": {"kd": 1}, "z": {"kd": 2}},
+                                     "empty": []})");
+    EXPECT_EQ(
+        expand_wildcards(doc, "/lights/*/samples", "s.json"),
+        (std::vector<std::string>{"/lights/0/samples", "/lights/1/samples", "/lights/2/samples"}));
+    // Object keys are re-escaped (RFC 6901: '/' is ~1); nlohmann keeps keys sorted.
+    EXPECT_EQ(expand_wildcards(doc, "/materials/*/kd", "s.json"),
+              (std::vector<std::string>{"/materials/x~1y/kd", "/materials/z/kd"}));
+    EXPECT_EQ(expand_wildcards(doc, "/render/seed", "s.json"),
+              (std::vector<std::string>{"/render/seed"}));
+    for (const char* bad : {"/empty/*/x", "/missing/*", "/lights/0/a/*"}) {
+        try {
+            expand_wildcards(doc, bad, "s.json");
+            FAIL() << bad;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::Input) << bad;
+            EXPECT_NE(std::string(e.what()).find(std::string("s.json: ") + bad), std::string::npos)
+                << e.what();
+        }
+    }
+}
+
+TEST(StudyDocument, ObjectValuesMergeIntoObjects) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("kasumi_study_merge_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "s.json").string();
+    std::ofstream(path) << R"({"lights": [{"type": "point", "shadows": "map",
+                                            "shadow_map": {"resolution": 64, "bias": 0.1}},
+                                           {"type": "point"}]})";
+    // Merge (RFC 7396): members replace or add, nested objects merge, null removes.
+    const Json doc = study_document_of(
+        path, std::vector<StudySetting>{
+                  {"/lights/*", R"({"shadow_map": {"resolution": 512}, "samples": 4})", true},
+                  {"/lights/0", R"({"shadows": null})", true}});
+    EXPECT_FALSE(doc["lights"][0].contains("shadows"));
+    EXPECT_EQ(doc["lights"][0]["shadow_map"]["resolution"].get<int>(), 512);
+    EXPECT_EQ(doc["lights"][0]["shadow_map"]["bias"].get<double>(), 0.1);
+    EXPECT_EQ(doc["lights"][1]["samples"].get<int>(), 4);
+    EXPECT_EQ(doc["lights"][1]["type"].get<std::string>(), "point");
+    // Without merge an object replaces the value, and a missing object is created either way.
+    const Json replaced = study_document_of(
+        path, std::vector<StudySetting>{{"/lights/0/shadow_map", R"({"resolution": 8})", false},
+                                        {"/render/volume", R"({"step_m": 2})", true}});
+    EXPECT_FALSE(replaced["lights"][0]["shadow_map"].contains("bias"));
+    EXPECT_EQ(replaced["render"]["volume"]["step_m"].get<double>(), 2.0);
+    // The string form expands wildcards too.
+    const Json set = study_document(path, {"/lights/*/samples=2"});
+    EXPECT_EQ(set["lights"][0]["samples"].get<int>(), 2);
+    EXPECT_EQ(set["lights"][1]["samples"].get<int>(), 2);
+    std::filesystem::remove_all(dir);
+}
+
 TEST(SvgPlot, OneLinePerSeriesAndFrontRings) {
     LogLogPlot plot;
     plot.title = "a < b";
@@ -225,6 +280,50 @@ TEST(StudyRun, ErrorFallsWithSamplesAndFilesAreWritten) {
     write_study(r, (dir / "out").string());
     for (const char* f : {"study.csv", "study.md", "study.svg"})
         EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(StudyRun, BuildTimingRendersTheSameImages) {
+    // Timing the build as well (each repeat builds the runtime from the parsed scene) must not
+    // change what is rendered: with fixed seeds the errors equal those of render-only timing,
+    // for an axis that merges an object into every light (ray-traced shadows vs a shadow map).
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("kasumi_study_build_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "shadow.json").string();
+    std::ofstream(path) << R"({
+      "camera": {"position": [0, 3, 5], "look_at": [0, 0, 0]},
+      "film": {"width": 12, "height": 8, "spp": 1, "jitter": false},
+      "materials": {"m": {"type": "phong", "kd": 0.7}},
+      "shapes": [{"type": "quad", "material": "m",
+                  "vertices": [[-3, 0, 3], [3, 0, 3], [3, 0, -3], [-3, 0, -3]]},
+                 {"type": "sphere", "material": "m", "center": [0, 0.5, 0], "radius": 0.5}],
+      "lights": [{"type": "point", "position": [0.5, 3, 0], "intensity_cd": 10}],
+      "render": {"seed": 3}
+    })";
+    StudySpec spec;
+    spec.scene_path = path;
+    // The automatic reference takes the last object listed: ray-traced shadows.
+    spec.axes = {parse_vary(R"(/lights/*={"shadows":"map","shadow_map":{"resolution":64}},)"
+                            R"({"shadows":"ray"})")};
+    spec.repeats = 2;
+    spec.threads = 1;
+    spec.reference_spp = 4;
+    const StudyResult render_only = run_study(spec);
+    spec.timing = StudyTiming::BuildRender;
+    const StudyResult with_build = run_study(spec);
+    ASSERT_EQ(with_build.rows.size(), 2u);
+    for (size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(with_build.rows[i].error.rmse, render_only.rows[i].error.rmse) << i;
+        EXPECT_EQ(with_build.rows[i].seconds.size(), 2u);
+    }
+    // Pixel centres and a point light: no randomness, so ray-traced shadows equal the
+    // ray-traced reference exactly, and the 64² map (texels ~9 cm, PCF over 3x3 of them)
+    // changes pixels along the ball's shadow edge.
+    EXPECT_GT(with_build.rows[0].error.rmse, 0.0);
+    EXPECT_EQ(with_build.rows[1].error.rmse, 0.0);
+    EXPECT_NE(study_markdown(with_build).find("shadow_map.resolution=64, shadows=map"),
+              std::string::npos);
     std::filesystem::remove_all(dir);
 }
 
