@@ -5,7 +5,9 @@
 # them; prints a Markdown table of the fraction of pixels whose luminance differs by more than
 # 1%, the RMSE (cd/m²) against the ray-traced render, and the median wall time of RUNS renders
 # (map building included). The same seed gives both renders the same samples, so the
-# difference is the visibility alone.
+# difference is the visibility alone. The accuracy-per-second view of the same question (error
+# against a converged ray-traced reference, map builds timed, Pareto front) is the `kasumi
+# study` run `bench/studies.sh shadows area-shadows area-samples` (docs/study.md).
 #
 # Usage: bench/shadow_study.sh [BUILD_DIR]   (default build/release; needs targets kasumi and
 #        shadow_compare).  Environment: RUNS (default 3), THREADS (default 2), OUT (scratch dir),
