@@ -30,6 +30,26 @@ expect_exit 3 "/lights/0/illuminance_lux" -- plan "$work/ok.json" --set /lights/
 [ -e "$work/a.exr" ] && fail "an output file was created for invalid input"
 [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "error message is not one line: $(cat "$work/stderr")"
 
+# IES files (LM-63): every revision loads, and a malformed one is an input error naming the IES
+# file and line and the scene's JSON path. An LM-63-1986 file has free-form label lines and no
+# format line; from LM-63-1995 on, a label line must be a [KEYWORD] line.
+for f in revision_1986 revision_1991 revision_2019 tilt_file mirror_90_270; do
+  cp "$src/tests/data/ies/$f.ies" "$work/$f.ies"
+done
+cp "$src/tests/data/ies/vertical_lamp.tlt" "$work/"
+printf 'IESNA:LM-63-2002\n[TEST] 1\nfree text\nTILT=NONE\n1 1000 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n5 5\n' \
+  >"$work/bad_label.ies"
+printf 'Acme 1986 label\nTILT=INCLUDE\n1 2\n0 90\n1 0.5\n1 1000 1 2 2 1 2 0 0 0\n1 1 10\n0 90\n90 180\n5 5 5 5\n' \
+  >"$work/bad_range.ies"
+for f in revision_1986 revision_1991 revision_2019 tilt_file mirror_90_270; do
+  expect_exit 0 "" -- check "$work/ok.json" --set /lights/0='{"type": "goniometric", "position": [0, 3, 0], "ies": "'$f'.ies"}'
+done
+expect_exit 3 "ok.json: /lights/0/ies.*bad_label.ies:3: expected a \[KEYWORD\] line" -- \
+  render "$work/ok.json" --set /lights/0='{"type": "goniometric", "position": [0, 3, 0], "ies": "bad_label.ies"}' -o "$work/a.exr" -q
+expect_exit 3 "ok.json: /lights/0/ies.*bad_range.ies:9: type C horizontal angles" -- \
+  check "$work/ok.json" --set /lights/0='{"type": "goniometric", "position": [0, 3, 0], "ies": "bad_range.ies"}'
+[ -e "$work/a.exr" ] && fail "an output file was created for a bad IES file"
+
 # Usage errors: exit 2.
 expect_exit 2 "" -- render
 expect_exit 2 "" -- render "$work/ok.json" --no-such-flag
