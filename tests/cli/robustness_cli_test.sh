@@ -288,13 +288,24 @@ for dir in "0.1,-0.25,-1" "-0.15,-0.1,-1" "0,0.2,-1"; do  # floor, sphere, fog a
   done
 done
 
-# Extreme but valid values render with no non-finite samples and no crash.
-for set in /media/0/sigma_s=1e30 /media/0/sigma_a=1e-30 /lights/1/intensity_cd=1e30 \
+# Extreme but valid values and hard cases render with no non-finite samples and no crash: a
+# camera grazing the floor, inside the sphere light, at the point light, in the polygon light's
+# plane; denormal coefficients; a point light on the floor, a line light lying on it, a two-sided
+# polygon light coplanar with it.
+for sets in /media/0/sigma_s=1e30 /media/0/sigma_a=1e-30 /lights/1/intensity_cd=1e30 \
   /shapes/1/radius=1e-30 /camera/fov_deg=1e-3 /camera/fov_deg=179.9 /media/0/phase/g=0.99999 \
-  /media/0/phase/g=-0.99999 '/lights/1/position=[0,1e-7,1]' '/camera/up=[1e-30,1,0]'; do
-  expect_exit 0 "" -- render "$s/all.json" --set "$set" -o "$work/x/e.exr" --no-preview -v
+  /media/0/phase/g=-0.99999 '/lights/1/position=[0,1e-7,1]' '/camera/up=[1e-30,1,0]' \
+  '/camera/position=[0,0,6]|/camera/look_at=[0,0,0]' '/camera/position=[1,2,2]|/camera/look_at=[0,1,0]' \
+  '/camera/position=[0,3,1]|/camera/look_at=[0,0,0]' '/camera/position=[0,2.9,0.2]|/camera/look_at=[0,0,0]' \
+  '/media/0/sigma_a=1e-40|/media/0/sigma_s=1e-40' '/lights/1/position=[0,0,0]|/camera/position=[0,1,3]' \
+  '/lights/4/from=[-1,0,1]|/lights/4/to=[1,0,1]' \
+  '/lights/5/vertices=[[0,0,0],[0.5,0,0],[0.5,0,0.5]]|/lights/5/two_sided=true'; do
+  IFS='|' read -r -a set <<<"$sets"
+  args=()
+  for x in "${set[@]}"; do args+=(--set "$x"); done
+  expect_exit 0 "" -- render "$s/all.json" "${args[@]}" --res 16x12 -o "$work/x/e.exr" --no-preview -v
   grep -q "non-finite samples  0$" "$work/stderr" ||
-    fail "render --set $set dropped non-finite samples: $(grep -i "non-finite\|error" "$work/stderr" | head -3)"
+    fail "render $sets dropped non-finite samples: $(grep -i "non-finite\|error" "$work/stderr" | head -3)"
 done
 
 if [ "$failures" -ne 0 ]; then
