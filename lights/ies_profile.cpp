@@ -23,9 +23,9 @@ float ies_tilt_multiplier(const IesProfile& profile, float tilt_deg) {
     const std::vector<float>& m = profile.tilt.multiplier;
     if (a.empty())
         return 1.0f;
-    float t = std::clamp(tilt_deg, 0.0f, 180.0f);
+    float t = std::isfinite(tilt_deg) ? std::clamp(tilt_deg, 0.0f, 180.0f) : 0.0f;
     // A table measured up to 90° at most: above 90° the lamp axis makes the angle 180° − t with
-    // the vertical (as ies2rad's tilt_ang2 in Radiance folds it).
+    // the vertical (Radiance's ies2rad likewise reads such tables with a second tilt function).
     if (a.back() <= 90.0f && t > 90.0f)
         t = 180.0f - t;
     if (a.size() == 1 || t <= a.front())
