@@ -4,6 +4,10 @@
 #include "light_test_util.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 namespace kasumi {
 namespace {
@@ -318,6 +322,40 @@ TEST(Ies, BadFilesNameTheLine) {
     EXPECT_NO_THROW(parse_ies(
         replace(replace(good, "[TEST] x", "garbage"), "IESNA:LM-63-2002", "IESNA91"), "good.ies"));
     EXPECT_NO_THROW(parse_ies(replace(good, "IESNA:LM-63-2002\n", "free text\n"), "good.ies"));
+}
+
+TEST(Ies, BadTiltFileNamesItsOwnLine) {
+    // TILT=<filename> is read relative to the IES file; its errors name the tilt file's line.
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("kasumi_ies_tilt_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir / "sub");
+    std::ofstream(dir / "sub" / "lamp.tlt") << "3\n2\n0 90\n1.0 x\n";
+    std::ofstream(dir / "extra.tlt") << "2 2 0 90 1 0.5\n7\n";
+    const std::string ies =
+        "IESNA:LM-63-1995\n[TEST] t\nTILT=sub/lamp.tlt\n1 100 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n"
+        "10 20\n";
+    const std::string where = (dir / "x.ies").string();
+    std::string what;
+    try {
+        parse_ies(ies, where);
+    } catch (const Error& e) {
+        what = e.what();
+    }
+    EXPECT_NE(what.find((dir / "sub" / "lamp.tlt").string() +
+                        ":4: expected a number for tilt multiplying factors"),
+              std::string::npos)
+        << what;
+    what.clear();
+    try {
+        std::string s = ies;
+        parse_ies(s.replace(s.find("sub/lamp.tlt"), 12, "extra.tlt"), where);
+    } catch (const Error& e) {
+        what = e.what();
+    }
+    EXPECT_NE(what.find((dir / "extra.tlt").string() + ":2: unexpected data after the tilt"),
+              std::string::npos)
+        << what;
+    std::filesystem::remove_all(dir);
 }
 
 TEST(GoniometricLight, BadIesFileIsAnInputErrorNamingSceneAndPointer) {
