@@ -43,7 +43,7 @@ two independent halves, its own noise removed by bench/vdb_image_compare; POV-Ra
 high settings, deterministic). Quality sweeps: POV-Ray media `samples` (method 3, intervals 1,
 jitter 0 and 1) or area-light size n x n (POV `adaptive a`: a 2^a + 1 grid first, subdivided
 where its shadow tests disagree; jitter); kasumi --spp, render.volume.step_m (4 m to 0.25 m) or
-the light's `samples`. Every sweep point is timed in
+the light's `samples` and `shadow_probes`. Every sweep point is timed in
 `--runs` alternating rounds (POV point, kasumi point, POV point, ...) on one thread each;
 times are CPU seconds (user + system) of the whole process, medians. Time at equal error:
 the other renderer's time at this error, interpolated linearly on its log-log error-vs-time
@@ -85,9 +85,15 @@ KASUMI_MEDIA_SWEEP = [("spp %d step %g m" % (spp, st), spp,
                       for st, spps in ((4, (1,)), (2, (1,)), (1, (1,)), (0.5, (1, 2, 4)),
                                        (0.25, (1, 2))) for spp in spps]
 KASUMI_MEDIA_REFERENCE = (["/render/volume/step_m=0.1"], 32)
-KASUMI_AREA_SWEEP = [("spp %d samples %d" % (spp, n), spp, ["/lights/0/samples=%d" % n])
-                     for n in (1, 4, 16) for spp in (1, 4, 16)]
-KASUMI_AREA_REFERENCE = (["/lights/0/samples=64"], 64)
+# Light samples are stratified per shading point (Owen-scrambled Sobol), so one pixel sample
+# with N light samples beats N pixel samples with one each (the pixel centre is fixed anyway:
+# film.jitter false). "probes P": shadow_probes, the adaptive rule (biased; its bias is in the
+# measured error, the reference has no probes).
+KASUMI_AREA_SWEEP = [("spp 1 samples %d probes %d" % (n, p), 1,
+                      ["/lights/0/samples=%d" % n, "/lights/0/shadow_probes=%d" % p])
+                     for n, p in ((4, 0), (16, 0), (64, 0), (256, 0), (64, 16), (256, 16),
+                                  (256, 32), (1024, 32), (1024, 64))]
+KASUMI_AREA_REFERENCE = (["/lights/0/samples=512"], 8)
 
 
 def vec(p):

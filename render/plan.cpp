@@ -86,7 +86,11 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
     std::vector<std::string> soft, maps, volumes;
     for (const Light& light : scene.lights) {
         if (!is_delta(light) && light.shadows == ShadowMode::Ray)
-            soft.push_back(light.name + ": " + std::to_string(light.samples) + " shadow rays");
+            soft.push_back(light.name + ": " + std::to_string(light.samples) + " shadow rays" +
+                           (light.shadow_probes > 0 && light.shadow_probes < light.samples
+                                ? ", stopping after " + std::to_string(light.shadow_probes) +
+                                      " probes that agree (biased)"
+                                : ""));
         if (light.shadows == ShadowMode::Map)
             maps.push_back(light.name + ": " + describe_shadow_maps(light));
         if (light.shadows == ShadowMode::ShadowVolume)
