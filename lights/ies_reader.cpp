@@ -346,9 +346,9 @@ IesProfile parse_ies(const std::string& text, const std::string& file) {
     for (const char* what : {"the luminous width", "the luminous length", "the luminous height"})
         numbers.next(what);
     const double ballast = numbers.next("the ballast factor");
-    // The second field is the ballast-lamp photometric factor up to LM-63-1995, "future use"
-    // (1) in LM-63-2002 and the file generation type in LM-63-2019 (a code such as 1.00001, not a
-    // factor: it is not applied).
+    // The second field is the ballast-lamp photometric factor of the older revisions, "future
+    // use" (1) in LM-63-2002 (applied: conforming files hold 1) and the file generation type in
+    // LM-63-2019 (a code such as 1.00001, not a factor: it is not applied).
     const double second_factor =
         numbers.next(p.format == "LM-63-2019" ? "the file generation type"
                                               : "the ballast-lamp photometric factor");
