@@ -97,9 +97,8 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
         const bool delta = is_delta(light);
         const StratifiedLightSamples u_light =
             delta ? StratifiedLightSamples(0u, 0u) : StratifiedLightSamples(rng);
-        ProbeRule probes(samples, traced || light.shadows == ShadowMode::None
-                                      ? light.shadow_probes
-                                      : 0);
+        ProbeRule probes(samples,
+                         traced || light.shadows == ShadowMode::None ? light.shadow_probes : 0);
         for (int k = 0; k < samples; ++k) {
             const IncidentLight in = delta ? incident_light(light, hit.position)
                                            : sample_incident(light, hit.position, u_light[k]);
@@ -144,8 +143,7 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
                         return;
                 }
                 float visibility = 1.0f;
-                if (light.shadows == ShadowMode::Map ||
-                    light.shadows == ShadowMode::ShadowVolume) {
+                if (light.shadows == ShadowMode::Map || light.shadows == ShadowMode::ShadowVolume) {
                     visibility =
                         scene.staged_visibility(static_cast<size_t>(&light - desc.lights.data()),
                                                 hit.position, ng, origin, in.light_position, wo);
