@@ -308,6 +308,15 @@ for sets in /media/0/sigma_s=1e30 /media/0/sigma_a=1e-30 /lights/1/intensity_cd=
     fail "render $sets dropped non-finite samples: $(grep -i "non-finite\|error" "$work/stderr" | head -3)"
 done
 
+# Illuminance at points on the lights themselves: at the point light, on the sphere light, on
+# the line light, in the polygon light's plane (grazing). JSON writes a NaN as null.
+for at in "0,3,1 --normal 0,1,0" "1.1,2,2 --normal 1,0,0" "0,2.5,1 --normal 0,-1,0" \
+  "0.25,2.9,0.1 --normal 1,0,0"; do
+  # shellcheck disable=SC2086  # $at holds two options
+  expect_exit 0 "" -- probe illuminance "$s/all.json" --at $at --samples 64
+  grep -qiE "nan|inf|null" "$work/stdout" && fail "probe illuminance --at $at: $(tr -d ' \n' <"$work/stdout")"
+done
+
 if [ "$failures" -ne 0 ]; then
   echo "$failures robustness check(s) failed"
   exit 1
