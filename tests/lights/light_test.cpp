@@ -83,6 +83,10 @@ TEST(LightJson, ExtendedLightsAndShadowSettings) {
         "shadows": "none", "vertices": [[0, 2, 0], [1, 2, 0], [1, 2, 1], [0, 2, 1]]})");
     EXPECT_FALSE(is_delta(polygon));
     EXPECT_EQ(polygon.samples, 32);
+    EXPECT_EQ(polygon.shadow_probes, 0);
+    const Light probed = parse(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1,
+        "luminance_cd_m2": 1, "samples": 64, "shadow_probes": 16})");
+    EXPECT_EQ(probed.shadow_probes, 16);
     EXPECT_EQ(polygon.shadows, ShadowMode::None);
     EXPECT_EQ(light_type_name(polygon), "polygon");
     const Light spot = parse(R"({"type": "spot", "position": [0, 0, 0], "direction": [0, -1, 0],
@@ -134,6 +138,11 @@ TEST(LightJson, BadExtendedLightsAreLocated) {
     has(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "luminance_cd_m2": 1,
         "samples": 0})",
         "/lights/0/samples = 0: must be an integer in [1, 4096]");
+    has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1, "shadow_probes": 2})",
+        "/lights/0/shadow_probes = 2: shadow_probes applies to line, polygon and sphere lights");
+    has(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "luminance_cd_m2": 1,
+        "samples": 8, "shadow_probes": 9})",
+        "/lights/0/shadow_probes = 9: must be an integer in [0, samples = 8]");
     has(R"({"type": "goniometric", "position": [0, 0, 0], "ies": "nowhere.ies"})",
         "lights.json: /lights/0/ies = \"nowhere.ies\": nowhere.ies: cannot open IES file");
 }
