@@ -22,6 +22,10 @@ struct DomeError {
     double mean_rel = 0.0;
     double max_ref_stderr = 0.0;  ///< largest relative standard error of the reference
     double mean_signed = 0.0;     ///< mean of (fast - reference) / reference
+    /// Largest |fast - reference| over the dome's brightest reference direction: in deep
+    /// twilight single scattering lights only a thin band of sky and the relative error of
+    /// directions 1e-4 as bright as that band says nothing about the image.
+    double max_over_peak = 0.0;
 };
 
 double luminance_of(const SkyScene& sky, const Bands& b) {
@@ -55,6 +59,7 @@ DomeError measure(double sun_elevation_deg, int reference_paths, int orders) {
     luts.build_sky_view(*sky, camera);
     DomeError out;
     int count = 0;
+    double peak = 0.0, max_abs = 0.0;
     for (const double elev : {2.0, 10.0, 20.0, 35.0, 55.0, 80.0}) {
         for (const double az : {0.0, 36.0, 72.0, 108.0, 144.0, 180.0}) {
             const DVec3 d = sun_direction(elev, az);
@@ -79,6 +84,8 @@ DomeError measure(double sun_elevation_deg, int reference_paths, int orders) {
                 continue;  // both dark (single scattering in the Earth's shadow)
             const double rel = std::abs(y_fast - y_ref) / y_ref;
             out.max_rel = std::max(out.max_rel, rel);
+            peak = std::max(peak, y_ref);
+            max_abs = std::max(max_abs, std::abs(y_fast - y_ref));
             out.mean_rel += rel;
             out.mean_signed += (y_fast - y_ref) / y_ref;
             out.max_ref_stderr = std::max(out.max_ref_stderr, stderr_ref / y_ref);
@@ -87,26 +94,33 @@ DomeError measure(double sun_elevation_deg, int reference_paths, int orders) {
     }
     out.mean_rel /= count;
     out.mean_signed /= count;
+    out.max_over_peak = peak > 0.0 ? max_abs / peak : 0.0;
     return out;
 }
 
 TEST(FastSky, SingleScatteringTablesAgainstReference) {
     // Deterministic: single scattering through the tables (transmittance LUT, sky-view LUT,
-    // 40 nodes) against the double-precision quadrature (64 view x 24 sun nodes).
+    // 40 nodes) against the double-precision quadrature (64 view x 24 sun nodes). From -6 deg
+    // down the sky's single scattering comes from a thin band of lit air toward the sun and
+    // the relative error of the rest (1e-4 of that band and less) is not meaningful: the
+    // twilight bounds are on the error over the dome's brightest direction (max_over_peak;
+    // measured 0.2-0.4%, bound 1%) and the mean relative error (measured 4-9%, bound 15%); the
+    // max relative error (29x at -6 deg, where the reference is 7e-6 cd/m²) is not bounded.
     struct Case {
-        double sun_elevation_deg, max_bound, mean_bound;
+        double sun_elevation_deg, max_bound, mean_bound, peak_bound;
     };
-    const Case cases[] = {{90.0, 0.015, 0.005},
-                          {30.0, 0.015, 0.005},
-                          {5.0, 0.015, 0.005},
-                          {0.0, 0.015, 0.005},
-                          {-4.0, 0.04, 0.015}};
-    std::printf("single scattering\nsun_deg  max_rel  mean_rel\n");
+    const Case cases[] = {{90.0, 0.015, 0.005, 0.015}, {30.0, 0.015, 0.005, 0.015},
+                          {5.0, 0.015, 0.005, 0.015},  {0.0, 0.015, 0.005, 0.015},
+                          {-4.0, 0.04, 0.015, 0.04},   {-6.0, 1e9, 0.15, 0.01},
+                          {-8.0, 1e9, 0.15, 0.01},     {-10.0, 1e9, 0.15, 0.01}};
+    std::printf("single scattering\nsun_deg  max_rel  mean_rel  max_over_peak\n");
     for (const Case& c : cases) {
         const DomeError e = measure(c.sun_elevation_deg, 1, 1);
-        std::printf("%7.1f  %7.4f  %8.4f\n", c.sun_elevation_deg, e.max_rel, e.mean_rel);
+        std::printf("%7.1f  %7.4f  %8.4f  %8.5f\n", c.sun_elevation_deg, e.max_rel, e.mean_rel,
+                    e.max_over_peak);
         EXPECT_LT(e.max_rel, c.max_bound) << "sun " << c.sun_elevation_deg;
         EXPECT_LT(e.mean_rel, c.mean_bound) << "sun " << c.sun_elevation_deg;
+        EXPECT_LT(e.max_over_peak, c.peak_bound) << "sun " << c.sun_elevation_deg;
     }
 }
 
@@ -146,6 +160,38 @@ TEST(FastSky, LuminanceErrorAgainstReferenceOverTheDome) {
         EXPECT_LT(e.max_rel, c.max_bound) << "sun " << c.sun_elevation_deg;
         EXPECT_LT(e.mean_rel, c.mean_bound) << "sun " << c.sun_elevation_deg;
         EXPECT_LT(std::abs(e.mean_signed), c.signed_bound) << "sun " << c.sun_elevation_deg;
+    }
+}
+
+TEST(FastSky, SkyViewFiniteNonNegativeAndSeamlessInDeepTwilightAndFromSpace) {
+    // The sky-view table with the sun at -10 deg from the ground, and from the top of the
+    // atmosphere (100 km) and space (120 km) with the sun at -10 and 30 deg: every direction of
+    // a 1-degree grid (elevations -90 to 90) finite and >= 0, and no seam where the table's
+    // azimuth wraps (toward the sun): +-0.01 deg either side agree to 1e-3.
+    for (const double camera_m : {1.5, 100e3, 120e3}) {
+        for (const double sun_deg : {-10.0, 30.0}) {
+            SunDesc sun;
+            sun.elevation_deg = sun_deg;
+            sun.azimuth_deg = 0.0;
+            const auto sky = make_sky_scene(default_earth_atmosphere(kRgbNm, kRgbNm), sun, {});
+            SkyLuts luts(*sky);
+            luts.build_sky_view(*sky, DVec3(0.0, camera_m, 0.0));
+            for (int e = -90; e <= 90; ++e) {
+                for (int az = 0; az < 360; ++az) {
+                    Bands l{};
+                    luts.sky_view(*sky, sun_direction(e, az), l);
+                    for (int i = 0; i < 3; ++i)
+                        ASSERT_TRUE(std::isfinite(l[i]) && l[i] >= 0.0)
+                            << camera_m << " m, sun " << sun_deg << ", " << e << "/" << az;
+                }
+                Bands a{}, b{};
+                luts.sky_view(*sky, sun_direction(e, 0.01), a);
+                luts.sky_view(*sky, sun_direction(e, -0.01), b);
+                const double ya = luminance_of(*sky, a), yb = luminance_of(*sky, b);
+                EXPECT_LE(std::abs(ya - yb), 1e-3 * std::max(ya, yb) + 1e-12)
+                    << camera_m << " m, sun " << sun_deg << ", elevation " << e;
+            }
+        }
     }
 }
 
