@@ -15,6 +15,7 @@ struct LoadedGrid {
     glm::dmat4 index_to_world{1.0};  ///< the grid's own (linear) transform
     std::string grid_name;           ///< the grid actually read
     uint64_t active_voxels = 0;
+    uint64_t active_tiles = 0;  ///< active tiles of OpenVDB's internal nodes among them
 };
 
 /// Reads float grid `grid_name` (empty: "density" if present, else the first float grid) from
@@ -33,8 +34,11 @@ struct DenseVoxels {
 
 /// Writes `voxels` as an OpenVDB fog volume (float grid `grid_name`, background 0, zero voxels
 /// inactive) with a uniform voxel size in metres and index (0, 0, 0) at `world_offset`. Values
-/// are written as given (tests use this to make invalid grids). Throws Error (Output) on failure.
+/// are written as given (tests use this to make invalid grids). With `constant_tiles`, regions of
+/// one value that fill whole OpenVDB nodes are stored as active tiles (tree prune; tests of the
+/// reader's tile path). Throws Error (Output) on failure.
 void write_fog_volume(const std::string& path, const std::string& grid_name,
-                      const DenseVoxels& voxels, double voxel_size_m, const Vec3& world_offset);
+                      const DenseVoxels& voxels, double voxel_size_m, const Vec3& world_offset,
+                      bool constant_tiles = false);
 
 }  // namespace kasumi

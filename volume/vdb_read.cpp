@@ -113,6 +113,7 @@ LoadedGrid load_density_grid(const std::string& path, const std::string& grid_na
     for (; tile; ++tile) {
         const openvdb::CoordBBox b = tile.getBoundingBox();
         tile_values.emplace_back(VoxelBlock::kVoxels, *tile);
+        ++loaded.active_tiles;
         VoxelBlock block;
         block.values = tile_values.back().data();
         block.active.fill(~uint64_t(0));

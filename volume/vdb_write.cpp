@@ -10,7 +10,8 @@
 namespace kasumi {
 
 void write_fog_volume(const std::string& path, const std::string& grid_name,
-                      const DenseVoxels& voxels, double voxel_size_m, const Vec3& world_offset) {
+                      const DenseVoxels& voxels, double voxel_size_m, const Vec3& world_offset,
+                      bool constant_tiles) {
     static std::once_flag once;
     std::call_once(once, [] { openvdb::initialize(); });
     KASUMI_CHECK(voxels.values.size() ==
@@ -33,6 +34,8 @@ void write_fog_volume(const std::string& path, const std::string& grid_name,
                                       v);
                 }
             }
+    if (constant_tiles)
+        grid->tree().prune();  // tolerance 0: only nodes of one value and one active state
     AtomicFile out(path);
     try {
         openvdb::io::File file(out.temp_path());

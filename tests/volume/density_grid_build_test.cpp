@@ -6,10 +6,13 @@
 #include "volume/density_grid_build.h"
 
 #include "core/rng.h"
+#include "vdb_test_grids.h"
+#include "volume/vdb_io.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <tuple>
@@ -171,6 +174,40 @@ TEST(DensityGridBuild, ActiveZerosAllocateNothing) {
     std::vector<BrickSpan> spans;
     built.grid->bricks_along(Vec3(0.0f, -4.0f, 4.0f), Vec3(1, 0, 0), 0.0f, 100.0f, spans);
     EXPECT_TRUE(spans.empty());
+}
+
+TEST(DensityGridBuild, ActiveTilesLoadLikeTheirVoxels) {
+    // A 160³ block whose lower 128³ octant is one value: pruned, OpenVDB stores that octant as a
+    // single active tile of an internal node (and the rest as leaves); the reader cuts tiles into
+    // 8³ blocks. The pruned file must load exactly like the same voxels stored as leaves.
+    DenseVoxels v;
+    v.origin = IVec3(-128, 0, -128);  // node-aligned, so the constant octant fills whole nodes
+    v.dims = IVec3(160);
+    v.values.resize(static_cast<size_t>(160) * 160 * 160);
+    Pcg32 rng(11, 2);
+    size_t i = 0;
+    for (int z = 0; z < 160; ++z)
+        for (int y = 0; y < 160; ++y)
+            for (int x = 0; x < 160; ++x, ++i)
+                v.values[i] = (x < 128 && y < 128 && z < 128) ? 0.5f : rng.next_float();
+    const std::string leaves = test::temp_grid_path("tile_leaves");
+    const std::string tiles = test::temp_grid_path("tile_pruned");
+    write_fog_volume(leaves, "density", v, 1.0, Vec3(0.0f), false);
+    write_fog_volume(tiles, "density", v, 1.0, Vec3(0.0f), true);
+    const LoadedGrid a = load_density_grid(leaves, "", "leaves");
+    const LoadedGrid b = load_density_grid(tiles, "", "tiles");
+    EXPECT_EQ(a.active_voxels, b.active_voxels);
+    EXPECT_EQ(a.active_tiles, 0u);
+    EXPECT_GT(b.active_tiles, 0u);  // the tile path was taken
+    ASSERT_EQ(a.grid->allocated_bricks(), b.grid->allocated_bricks());
+    EXPECT_EQ(a.grid->max_density(), b.grid->max_density());
+    EXPECT_EQ(a.grid->lower(), b.grid->lower());
+    for (int k = 0; k < 200000; ++k) {
+        const Vec3 p = Vec3(v.origin) - Vec3(2.0f) +
+                       164.0f * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
+        ASSERT_EQ(a.grid->density(p), b.grid->density(p)) << p.x << " " << p.y << " " << p.z;
+    }
+    EXPECT_EQ(b.grid->density(Vec3(-60.0f, 60.0f, -60.0f)), 0.5f);
 }
 
 }  // namespace
