@@ -104,6 +104,8 @@ class DensityGrid {
     float sub_min(size_t storage, int s) const { return m_sub_min[storage * kSubBlocks + s]; }
 
   private:
+    friend class DensityGridBuilder;  // volume/density_grid_build.h: parallel construction
+
     /// Trilinear interpolation in the cell at local index l of a brick's 9³ voxels, fractions f.
     static float trilinear(const float* brick, IVec3 l, Vec3 f) {
         const float* v = brick + (l.x + kStored * (l.y + kStored * l.z));
