@@ -56,27 +56,10 @@ void DensityGrid::set(IVec3 index, float value) {
 
 void DensityGrid::finalize() {
     m_max_density = 0.0f;
-    m_sub_max.assign(m_allocated * kSubBlocks, 0.0f);
-    m_sub_min.assign(m_allocated * kSubBlocks, 0.0f);
     for (size_t slot = 0; slot < m_brick_index.size(); ++slot) {
         if (m_brick_index[slot] < 0)
             continue;
-        const size_t storage = static_cast<size_t>(m_brick_index[slot]);
-        const float* v = &m_voxels[storage * kBrickVoxels];
-        // The same argument per sub-block: its cells' corners are its (kSubCells + 1)³ voxels.
-        for (int s = 0; s < kSubBlocks; ++s) {
-            const IVec3 first = IVec3(s % kSub, (s / kSub) % kSub, s / (kSub * kSub)) * kSubCells;
-            float lo = v[first.x + kStored * (first.y + kStored * first.z)], hi = lo;
-            for (int z = first.z; z <= first.z + kSubCells; ++z)
-                for (int y = first.y; y <= first.y + kSubCells; ++y)
-                    for (int x = first.x; x <= first.x + kSubCells; ++x) {
-                        const float value = v[x + kStored * (y + kStored * z)];
-                        lo = std::min(lo, value);
-                        hi = std::max(hi, value);
-                    }
-            m_sub_min[storage * kSubBlocks + s] = lo;
-            m_sub_max[storage * kSubBlocks + s] = hi;
-        }
+        const float* v = &m_voxels[static_cast<size_t>(m_brick_index[slot]) * kBrickVoxels];
         // Trilinear interpolation is a convex combination of the 8 corners, so the extremes of
         // the stored 9³ voxels bound the density everywhere inside the brick exactly.
         const auto [lo, hi] = std::minmax_element(v, v + kBrickVoxels);

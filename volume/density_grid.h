@@ -35,11 +35,6 @@ class DensityGrid {
     static constexpr int kBrick = 8;            ///< cells per brick edge
     static constexpr int kStored = kBrick + 1;  ///< voxels per stored brick edge (with apron)
     static constexpr int kBrickVoxels = kStored * kStored * kStored;
-    /// Sub-blocks per brick edge: the trackers' walk bounds the density per sub-block of
-    /// kSubCells³ cells (finer than per brick: fewer null collisions, a smaller residual).
-    static constexpr int kSub = 2;
-    static constexpr int kSubCells = kBrick / kSub;
-    static constexpr int kSubBlocks = kSub * kSub * kSub;
 
     DensityGrid() = default;
     /// An empty grid able to hold voxels with indices in [index_min, index_max] (inclusive).
@@ -75,12 +70,10 @@ class DensityGrid {
     }
 
     /// Walks the index-space ray o + t d, t in [t0, t1], in order through the non-empty bricks
-    /// (3D DDA over bricks, Amanatides & Woo 1987) and, inside each brick whose density is not
-    /// constant, through its kSub³ sub-blocks (a second DDA), calling
-    /// visit(const BrickSpan& span, const BrickRef& brick) for each stretch with non-zero
-    /// bounds: span's bounds are the sub-block's (or the constant brick's). Stops, returning
-    /// false, as soon as visit returns false: nothing past that point is walked. t keeps the
-    /// caller's units.
+    /// (3D DDA over bricks, Amanatides & Woo 1987), calling
+    /// visit(const BrickSpan& span, const BrickRef& brick) for each. Stops, returning false, as
+    /// soon as visit returns false: nothing past that point is walked (bricks_along lists the
+    /// whole ray first). t keeps the caller's units.
     template <class Visit>
     bool walk(const Vec3& o_index, const Vec3& d_index, float t0, float t1, Visit&& visit) const;
 
@@ -97,11 +90,6 @@ class DensityGrid {
     /// Index-space box that can hold non-zero density: [lower, upper].
     Vec3 lower() const { return m_origin_f; }
     Vec3 upper() const { return m_origin_f + Vec3(m_bricks * kBrick); }
-
-    /// Bounds of the density in sub-block s (0 .. kSubBlocks - 1, x fastest) of allocated
-    /// brick `storage`: exact extremes of its (kSubCells + 1)³ voxels.
-    float sub_max(size_t storage, int s) const { return m_sub_max[storage * kSubBlocks + s]; }
-    float sub_min(size_t storage, int s) const { return m_sub_min[storage * kSubBlocks + s]; }
 
   private:
     friend class DensityGridBuilder;  // volume/density_grid_build.h: parallel construction
@@ -133,8 +121,6 @@ class DensityGrid {
     std::vector<float> m_voxels;         ///< kBrickVoxels floats per allocated brick
     std::vector<float> m_brick_max;      ///< per brick slot
     std::vector<float> m_brick_min;      ///< per brick slot
-    std::vector<float> m_sub_max;        ///< kSubBlocks per allocated brick
-    std::vector<float> m_sub_min;        ///< kSubBlocks per allocated brick
     size_t m_allocated = 0;
     float m_max_density = 0.0f;
 };
@@ -178,50 +164,17 @@ bool DensityGrid::walk(const Vec3& o_index, const Vec3& d_index, float t0, float
             t_delta[a] = -1.0f / d[a];
         }
     }
-    // Sub-block space inside a brick: the ray is ps + t ds with ps = (p - cell) kSub.
-    const Vec3 ds = d * static_cast<float>(kSub);
     for (float t = ta; t < tb;) {
         const int axis =
             t_next.x <= t_next.y ? (t_next.x <= t_next.z ? 0 : 2) : (t_next.y <= t_next.z ? 1 : 2);
         const float t_exit = std::min(t_next[axis], tb);
         const size_t slot = brick_slot(cell);
         const int32_t storage = m_brick_index[slot];
-        if (storage >= 0 && t_exit > t && m_brick_max[slot] > 0.0f) {
+        if (storage >= 0 && t_exit > t) {
             const BrickRef brick{&m_voxels[static_cast<size_t>(storage) * kBrickVoxels],
                                  m_origin_f + Vec3(cell * kBrick)};
-            if (m_brick_max[slot] == m_brick_min[slot]) {
-                // Constant brick: one span, no sub-blocks to walk.
-                if (!visit(BrickSpan{t, t_exit, m_brick_max[slot], m_brick_min[slot]}, brick))
-                    return false;
-            } else {
-                const Vec3 ps = (p - Vec3(cell)) * static_cast<float>(kSub);
-                IVec3 sub = glm::clamp(IVec3(glm::floor(ps + ds * t)), IVec3(0), IVec3(kSub - 1));
-                Vec3 s_next(kInfinity);
-                for (int a = 0; a < 3; ++a) {
-                    if (step[a] != 0)
-                        s_next[a] =
-                            (static_cast<float>(sub[a] + (step[a] > 0 ? 1 : 0)) - ps[a]) / ds[a];
-                }
-                for (float u = t; u < t_exit;) {
-                    const int b = s_next.x <= s_next.y ? (s_next.x <= s_next.z ? 0 : 2)
-                                                       : (s_next.y <= s_next.z ? 1 : 2);
-                    const float u_exit = std::min(s_next[b], t_exit);
-                    const int s = sub.x + kSub * (sub.y + kSub * sub.z);
-                    const size_t k = static_cast<size_t>(storage) * kSubBlocks + s;
-                    if (u_exit > u && m_sub_max[k] > 0.0f &&
-                        !visit(BrickSpan{u, u_exit, m_sub_max[k], m_sub_min[k]}, brick))
-                        return false;
-                    u = std::max(u, u_exit);
-                    sub[b] += step[b];
-                    s_next[b] += t_delta[b] * (1.0f / kSub);
-                    if (sub[b] < 0 || sub[b] >= kSub) {
-                        // Left the brick a rounding error before t_exit: finish in the last
-                        // sub-block along this axis (the loop ends once u reaches t_exit).
-                        sub[b] -= step[b];
-                        s_next[b] = kInfinity;
-                    }
-                }
-            }
+            if (!visit(BrickSpan{t, t_exit, m_brick_max[slot], m_brick_min[slot]}, brick))
+                return false;
         }
         t = std::max(t, t_exit);
         cell[axis] += step[axis];

@@ -121,7 +121,7 @@ class MediumSet {
     };
     const FastMedium& fast(uint32_t k) const { return m_fast[k]; }
     /// The medium when the set is exactly one grid medium, else null: the trackers then walk
-    /// the grid's bricks and sub-blocks lazily (volume/majorant_walk.h).
+    /// the grid's bricks lazily (volume/majorant_walk.h).
     const FastMedium* single_grid() const {
         return m_fast.size() == 1 && m_fast[0].grid != nullptr ? &m_fast[0] : nullptr;
     }
