@@ -80,6 +80,8 @@ void add_render_command(CLI::App& root) {
         int threads = 0;
         std::string res;
         int64_t frame = 0;
+        std::string aovs = "all";
+        std::string compression = "zip";
     };
     auto options = std::make_shared<Options>();
     CLI::App* cmd = root.add_subcommand("render", "render a scene to EXR and a PNG preview");
@@ -98,6 +100,11 @@ void add_render_command(CLI::App& root) {
     cmd->add_option("--frame", options->frame,
                     "frame of an animated scene: keyframed values and random numbers (default 0)")
         ->check(CLI::Range(int64_t{0}, int64_t{4294967295}));
+    cmd->add_option("--aovs", options->aovs,
+                    "EXR channels beside R, G, B, A: all (default), none, or a list of "
+                    "albedo, depth, surface, volume, transmittance");
+    cmd->add_option("--compression", options->compression,
+                    "EXR compression, all lossless: zip (default), piz, rle, none");
     cmd->callback([options] {
         SceneOptions scene_options = options->scene;
         if (options->spp > 0)
@@ -135,6 +142,7 @@ void add_render_command(CLI::App& root) {
         times.load_s = seconds_since(load_start);
 
         OutputPaths paths;
+        parse_output_format(options->aovs, options->compression, paths.aovs, paths.compression);
         const std::string stem = std::filesystem::path(desc.file).stem().string();
         paths.exr = options->output.empty() ? "out/" + stem + ".exr" : options->output;
         if (!options->no_preview) {

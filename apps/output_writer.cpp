@@ -26,10 +26,23 @@ void make_parent_dirs(const std::string& path) {
 
 }  // namespace
 
+void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
+                         uint32_t& aovs, ExrCompression& compression) {
+    if (!parse_film_aovs(aovs_text, aovs))
+        throw Error(ErrorKind::Usage,
+                    "--aovs expects all, none or a comma-separated list of albedo, depth, "
+                    "surface, volume, transmittance; got \"" +
+                        aovs_text + "\"");
+    if (!parse_exr_compression(compression_text, compression))
+        throw Error(ErrorKind::Usage, "--compression expects zip, piz, rle or none; got \"" +
+                                          compression_text + "\"");
+}
+
 void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
                           const OutputPaths& paths, const StageTimes& times) {
     const SceneDesc& desc = scene.desc();
-    Image image = result.film.to_image();
+    Image image;
+    result.film.to_image(image, paths.aovs);
     const RenderCounters& c = result.counters;
     image.metadata = {
         {"version", version_string()},
@@ -57,7 +70,7 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
     for (auto& kv : stage_metadata(times, scene.plan()))
         image.metadata.push_back(std::move(kv));
     make_parent_dirs(paths.exr);
-    write_exr(image, paths.exr);
+    write_exr(image, paths.exr, paths.compression);
     if (!paths.preview.empty()) {
         make_parent_dirs(paths.preview);
         PreviewSettings preview;

@@ -1,6 +1,7 @@
 #include "apps/sequence_command.h"
 
 #include "apps/commands.h"
+#include "apps/output_writer.h"
 #include "apps/scene_options.h"
 #include "core/error.h"
 #include "render/sequence.h"
@@ -77,14 +78,7 @@ void run(const Options& o) {
     s.log = o.scene.quiet ? nullptr : stderr;
     s.cancel = &g_cancel;
     s.metadata = {{"version", version_string()}};
-    if (!parse_film_aovs(o.aovs, s.aovs))
-        throw Error(ErrorKind::Usage,
-                    "--aovs expects all, none or a comma-separated list of "
-                    "albedo, depth, surface, volume, transmittance; got \"" +
-                        o.aovs + "\"");
-    if (!parse_exr_compression(o.compression, s.compression))
-        throw Error(ErrorKind::Usage,
-                    "--compression expects zip, piz, rle or none; got \"" + o.compression + "\"");
+    parse_output_format(o.aovs, o.compression, s.aovs, s.compression);
     if (o.frames.empty() && o.frame < 0)
         throw Error(ErrorKind::Usage, "sequence needs --frames A-B[:step] or --frame N");
     if (o.frame >= 0) {

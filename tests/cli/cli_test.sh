@@ -79,6 +79,17 @@ expect_exit 0 "" -- render "$work/ok.json" -o "$work/out/r.exr" --preview "$work
 [ "$(ls -A "$work/out" | wc -l)" -eq 2 ] || fail "stray files beside the outputs: $(ls -A "$work/out")"
 head -c 4 "$work/out/r.exr" | od -An -tx1 | grep -q "76 2f 31 01" || fail "EXR magic number missing"
 
+# --aovs picks the EXR's channels beside R, G, B, A (names in the header's channel list).
+grep -qa "depth.Z" "$work/out/r.exr" || fail "default render lacks the depth.Z AOV"
+expect_exit 0 "" -- render "$work/ok.json" -o "$work/aov/r.exr" --no-preview -q --aovs none --compression rle
+grep -qa "depth.Z\|albedo.R" "$work/aov/r.exr" && fail "--aovs none still wrote AOV channels"
+expect_exit 0 "" -- render "$work/ok.json" -o "$work/aov/d.exr" --no-preview -q --aovs depth
+grep -qa "depth.Z" "$work/aov/d.exr" || fail "--aovs depth lacks depth.Z"
+grep -qa "albedo.R" "$work/aov/d.exr" && fail "--aovs depth wrote albedo"
+expect_exit 2 "--aovs expects" -- render "$work/ok.json" -o "$work/aov/x.exr" -q --aovs normals
+expect_exit 2 "--compression expects" -- render "$work/ok.json" -o "$work/aov/x.exr" -q --compression lzma
+[ -e "$work/aov/x.exr" ] && fail "a usage error left an output file"
+
 # Unwritable output: exit 4.
 expect_exit 4 "" -- render "$work/ok.json" -o /proc/kasumi/r.exr -q
 
