@@ -71,65 +71,16 @@ void DensityGrid::finalize() {
 
 void DensityGrid::bricks_along(const Vec3& o_index, const Vec3& d_index, float t0, float t1,
                                std::vector<BrickSpan>& out) const {
-    if (m_allocated == 0 || !(t1 > t0))
-        return;
-    // Brick space: brick b covers [b, b + 1) per axis.
-    const Vec3 p = (o_index - m_origin_f) * (1.0f / kBrick);
-    const Vec3 d = d_index * (1.0f / kBrick);
-    const Vec3 n(m_bricks);
-    float ta = t0, tb = t1;
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0f) {
-            if (!(p[a] >= 0.0f && p[a] < n[a]))
-                return;
-            continue;
+    walk(o_index, d_index, t0, t1, [&out](const BrickSpan& span, const BrickRef&) {
+        if (!out.empty() && out.back().t1 == span.t0 &&
+            out.back().density_max == span.density_max &&
+            out.back().density_min == span.density_min) {
+            out.back().t1 = span.t1;  // merge equal neighbours: fewer spans to walk
+        } else {
+            out.push_back(span);
         }
-        const float inv = 1.0f / d[a];
-        float near = (0.0f - p[a]) * inv, far = (n[a] - p[a]) * inv;
-        if (near > far)
-            std::swap(near, far);
-        ta = std::max(ta, near);
-        tb = std::min(tb, far);
-    }
-    if (!(tb > ta))
-        return;
-    // The brick holding the midpoint of the first step decides the start cell robustly when
-    // the entry point lies on a face.
-    const Vec3 start = p + d * ta;
-    IVec3 cell = glm::clamp(IVec3(glm::floor(start)), IVec3(0), m_bricks - IVec3(1));
-    IVec3 step(0);
-    Vec3 t_next(std::numeric_limits<float>::infinity()), t_delta(0.0f);
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] > 0.0f) {
-            step[a] = 1;
-            t_next[a] = (static_cast<float>(cell[a] + 1) - p[a]) / d[a];
-            t_delta[a] = 1.0f / d[a];
-        } else if (d[a] < 0.0f) {
-            step[a] = -1;
-            t_next[a] = (static_cast<float>(cell[a]) - p[a]) / d[a];
-            t_delta[a] = -1.0f / d[a];
-        }
-    }
-    float t = ta;
-    while (t < tb) {
-        const int axis =
-            t_next.x <= t_next.y ? (t_next.x <= t_next.z ? 0 : 2) : (t_next.y <= t_next.z ? 1 : 2);
-        const float t_exit = std::min(t_next[axis], tb);
-        const size_t slot = brick_slot(cell);
-        if (m_brick_index[slot] >= 0 && t_exit > t) {
-            if (!out.empty() && out.back().t1 == t && out.back().density_max == m_brick_max[slot] &&
-                out.back().density_min == m_brick_min[slot]) {
-                out.back().t1 = t_exit;  // merge equal neighbours: fewer spans to walk
-            } else {
-                out.push_back({t, t_exit, m_brick_max[slot], m_brick_min[slot]});
-            }
-        }
-        t = std::max(t, t_exit);
-        cell[axis] += step[axis];
-        if (cell[axis] < 0 || cell[axis] >= m_bricks[axis])
-            break;
-        t_next[axis] += t_delta[axis];
-    }
+        return true;
+    });
 }
 
 }  // namespace kasumi
