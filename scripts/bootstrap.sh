@@ -56,7 +56,7 @@ case "$mode" in
     ctest --preset ci -j "$jobs"
     build asan
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-      ctest --preset asan -j "$jobs"
+      LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0" ctest --preset asan -j "$jobs"
     ;;
   *)
     echo "usage: scripts/bootstrap.sh render|test" >&2
