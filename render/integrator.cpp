@@ -3,6 +3,7 @@
 #include "lights/light_samples.h"
 #include "render/gi.h"
 #include "render/photon_gi.h"
+#include "render/sky_environment.h"
 #include "render/sky_shafts.h"
 #include "render/whitted.h"
 #include "surface/emitter_hit.h"
@@ -26,7 +27,8 @@ Rgb phong_brdf(const PhongMaterial& m, const Vec3& n, const Vec3& wo, const Vec3
     return f;
 }
 
-/// What scattered paths meet beyond the media: the directly lit surfaces, or the background.
+/// What scattered paths meet beyond the media: the directly lit surfaces, or the sky (without
+/// the sun's disc: next-event estimation takes the sun) or the constant background.
 class RenderPathEnvironment final : public PathEnvironment {
   public:
     RenderPathEnvironment(const SceneRuntime& scene, RenderCounters& counters)
@@ -49,7 +51,7 @@ class RenderPathEnvironment final : public PathEnvironment {
                        shade_surface(m_scene, *hit, -ray.direction, rng, m_counters);
             }
         }
-        return m_scene.desc().background;
+        return escaped_radiance(m_scene, ray, /*sun_disc=*/false, rng);
     }
 
   private:
