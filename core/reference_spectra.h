@@ -7,13 +7,14 @@
 namespace kasumi {
 
 /// Extraterrestrial solar spectral irradiance at 1 au, W/(m² nm): the ASTM G173-03 ETR column
-/// averaged over [lambda, lambda + 10) nm (Bruneton 2017, precomputed_atmospheric_scattering,
-/// demo.cc kSolarIrradiance), tabulated at lambda = 360, 370, ..., 830 nm.
+/// averaged over the bins [360, 370), ..., [830, 840) nm (Bruneton 2017,
+/// precomputed_atmospheric_scattering, demo.cc kSolarIrradiance), each mean tabulated at its
+/// bin centre 365, 375, ..., 835 nm, with flat half bins to 360 and 840 nm (50 rows).
 const WavelengthTable& solar_irradiance_astm_g173();
 
 /// Trapezoidal integral of the ASTM G173-03 ETR column (0.5 nm steps below 400 nm, 1 nm above)
 /// over [360, 840] nm, W/m², computed from the standard's own table: the total the 10 nm bin
-/// means above must reproduce (sum of the 48 means x 10 nm).
+/// means above must reproduce (sum of the 48 means x 10 nm, the integral of the table).
 inline constexpr double kAstmG173EtrIntegral360To840 = 745.27;
 
 /// Absorption cross section of ozone at 233 K, m² per molecule (Serdyuchenko et al. 2014,

@@ -105,21 +105,22 @@ TEST(CsvTable, OutsideTheRangeIsAnErrorNotAClamp) {
 }
 
 TEST(ReferenceSpectra, SolarTableIntegratesToTheAstmTotal) {
-    // Each row is the mean of the ASTM G173-03 ETR samples in [lambda, lambda + 10) nm, so the
-    // 48 rows times 10 nm are the integral over [360, 840] nm: 745.27 W/m² by the trapezoid rule
-    // on the standard's own 0.5/1 nm table (kAstmG173EtrIntegral360To840), i.e. 54.6% of the
+    // The 48 bin means of the ASTM G173-03 ETR samples in [360 + 10 i, 370 + 10 i) nm sit at
+    // their bin centres, with flat half bins to 360 and 840 nm, so the linear table's integral
+    // is exactly 10 nm times their sum: 745.27 W/m² by the trapezoid rule on the standard's own
+    // 0.5/1 nm table over [360, 840] nm (kAstmG173EtrIntegral360To840), i.e. 54.6% of the
     // 1366.1 W/m² the standard states for its whole ETR column.
     const WavelengthTable& s = solar_irradiance_astm_g173();
-    ASSERT_EQ(s.nm.size(), 48u);
+    ASSERT_EQ(s.nm.size(), 50u);
     EXPECT_EQ(s.min_nm(), 360.0);
-    EXPECT_EQ(s.max_nm(), 830.0);
+    EXPECT_EQ(s.max_nm(), 840.0);
     double sum = 0.0;
-    for (const double v : s.value)
-        sum += v * 10.0;
+    for (size_t i = 1; i + 1 < s.value.size(); ++i) {
+        EXPECT_EQ(s.nm[i], 355.0 + 10.0 * static_cast<double>(i));
+        sum += s.value[i] * 10.0;
+    }
+    EXPECT_NEAR(s.integral() / sum, 1.0, 1e-12);
     EXPECT_NEAR(sum / kAstmG173EtrIntegral360To840, 1.0, 0.01);
-    // The linear interpolant over [360, 830]: the ASTM trapezoid over the same range is
-    // 734.78 W/m² (same source table), a second check of the interpolation and of the rows.
-    EXPECT_NEAR(s.integral() / 734.78, 1.0, 0.01);
 }
 
 TEST(ReferenceSpectra, ShippedCsvFilesHoldTheCompiledTables) {
