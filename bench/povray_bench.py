@@ -2,6 +2,7 @@
 """Peer benchmark: kasumi against POV-Ray 3.7 on matched scenes, compared at equal error.
 
     bench/povray_bench.py [--build build/release] [--runs 5] [--cases rayleigh,hg,soft]
+                          [--res 320x240] [--out build/povray_bench]
 
 Cases (kasumi scenes in data/scenes/, translated to POV-Ray SDL by this script):
   rayleigh  povray_fog_rayleigh.json  homogeneous fog, Rayleigh phase (POV media scattering type 4)
@@ -33,7 +34,9 @@ Matching (from POV-Ray 3.7 source/backend/interior/media.cpp and lighting/point.
   each lit point), same colour rule as a point light. POV's area lights take the diffuse
   cosine from the centre (area_illumination off); a sphere fully above a surface lights it
   exactly like a point at its centre, so the unshadowed light agrees.
-- Pixels: one ray through each pixel centre in both (POV without +A; kasumi film.jitter false).
+- Pixels: one ray through each pixel centre in both (POV without +A; kasumi film.jitter false),
+  --res W x H in both (the scenes say 320 x 240). Output: POV an RGB EXR, kasumi --aovs none
+  (R, G, B, A; no AOV channels).
 Residual mismatch of the two converged references is printed (RMSE relative to the mean, and
 the least-squares scale s minimising |s POV - kasumi|); each renderer's error is measured against
 its OWN converged reference, so the time ratios do not depend on that residual.
@@ -42,7 +45,7 @@ Error: RMSE over R, G, B of all pixels against the renderer's converged referenc
 two independent halves, its own noise removed by bench/vdb_image_compare; POV-Ray: one render at
 high settings, deterministic). Quality sweeps: POV-Ray media `samples` (method 3, intervals 1,
 jitter 0 and 1) or area-light size n x n (POV `adaptive a`: a 2^a + 1 grid first, subdivided
-where its shadow tests disagree; jitter); kasumi --spp, render.volume.step_m (4 m to 0.25 m) or
+where its shadow tests disagree; jitter); kasumi render.volume.step_m (16 m to 0.25 m, 1 spp) or
 the light's `samples` and `shadow_probes`. Every sweep point is timed in
 `--runs` alternating rounds (POV point, kasumi point, POV point, ...) on one thread each;
 times are CPU seconds (user + system) of the whole process, medians. Time at equal error:
@@ -80,11 +83,12 @@ POV_AREA_SWEEP = [("area %dx%d adaptive %d" % (n, n, a), {"n": n, "adaptive": a}
 POV_AREA_REFERENCE = {"n": 65, "adaptive": 0}
 
 # kasumi sweeps: (label, spp, --set list) per kind of case.
-KASUMI_MEDIA_SWEEP = [("spp %d step %g m" % (spp, st), spp,
-                       ["/render/volume/step_m=%g" % st])
-                      for st, spps in ((4, (1,)), (2, (1,)), (1, (1,)), (0.5, (1, 2, 4)),
-                                       (0.25, (1, 2))) for spp in spps]
-KASUMI_MEDIA_REFERENCE = (["/render/volume/step_m=0.1"], 32)
+# The fog's point lamp is sampled equiangularly with the unshadowed airlight as a control
+# variate (volume/in_scattering.cpp): step_m sets the shadow-ray samples per camera ray (one per
+# step), and 1 spp at half the step beats 2 spp (the pixel centre is fixed: film.jitter false).
+KASUMI_MEDIA_SWEEP = [("spp 1 step %g m" % st, 1, ["/render/volume/step_m=%g" % st])
+                      for st in (16, 8, 4, 2, 1, 0.5, 0.25)]
+KASUMI_MEDIA_REFERENCE = (["/render/volume/step_m=0.1"], 16)
 # Light samples are stratified per shading point (Owen-scrambled Sobol), so one pixel sample
 # with N light samples beats N pixel samples with one each (the pixel centre is fixed anyway:
 # film.jitter false). "probes P": shadow_probes, the adaptive rule (biased; its bias is in the
@@ -188,7 +192,8 @@ def render_pov(args, scene, quality, name, threads):
 
 def render_k(args, scene_path, name, spp, sets, seed, threads):
     out = os.path.join(args.out, name + ".exr")
-    extra = []
+    # R, G, B, A only, as POV-Ray writes (no AOV channels); the image size of --res.
+    extra = ["--aovs", "none", "--res", "%dx%d" % args.res]
     for s in sets:
         extra += ["--set", s]
     _, wall, cpu, _ = bench_common.render_kasumi(args.kasumi, scene_path, out, spp, seed,
@@ -215,6 +220,7 @@ def run_case(args, case):
     scene_path = os.path.join(ROOT, "data", "scenes", CASES[case])
     with open(scene_path) as f:
         scene = json.load(f)
+    scene["film"]["width"], scene["film"]["height"] = args.res
     area = case == "soft"
     pov_sweep = POV_AREA_SWEEP if area else POV_MEDIA_SWEEP
     pov_ref_q = POV_AREA_REFERENCE if area else POV_MEDIA_REFERENCE
@@ -306,7 +312,11 @@ def main():
     ap.add_argument("--cases", default="rayleigh,hg,soft")
     ap.add_argument("--povray", default="povray")
     ap.add_argument("--out", default=os.path.join(ROOT, "build", "povray_bench"))
+    ap.add_argument("--res", default="320x240",
+                    help="image size WxH of both renderers (references are kept per --out: "
+                    "use one --out per size)")
     args = ap.parse_args()
+    args.res = tuple(int(v) for v in args.res.lower().split("x"))
     args.kasumi = os.path.join(args.build, "apps", "kasumi")
     args.compare = os.path.join(args.build, "bench", "vdb_image_compare")
     args.out = os.path.abspath(args.out)
@@ -339,9 +349,9 @@ def main():
                  "%.2f%%" % (100 * s["residual"]["rel_rmse_after_scale"])] for s in summaries]
     md = (bench_common.markdown_table(sum_header, sum_rows) + "\n\n" +
           bench_common.markdown_table(header, table_rows) + "\n\n" +
-          "load average %.2f at start, %.2f at end; %d cores; %d alternating rounds, one "
-          "thread each, CPU time of the whole process\n" %
-          (load[0], load_end[0], os.cpu_count(), args.runs))
+          "%dx%d; load average %.2f at start, %.2f at end; %d cores; %d alternating rounds, "
+          "one thread each, CPU time of the whole process\n" %
+          (args.res + (load[0], load_end[0], os.cpu_count(), args.runs)))
     with open(os.path.join(args.out, "povray_bench.md"), "w") as f:
         f.write(md)
     print(md)

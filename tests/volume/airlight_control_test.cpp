@@ -1,0 +1,309 @@
+// Point-light single scattering in homogeneous fog with the airlight control variate
+// (volume/in_scattering.cpp, volume/gauss_interpolant.h): the interpolant's integral is exact,
+// the estimate matches the closed form of Sun et al. 2005 unshadowed and a brute-force march
+// with shadows, and it is unbiased wherever the control fits badly.
+#include "phase/henyey_greenstein.h"
+#include "phase/rayleigh.h"
+#include "volume/gauss_interpolant.h"
+#include "volume/in_scattering.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+namespace kasumi {
+namespace {
+
+TEST(GaussLegendreInterpolant, ReproducesDegreeSevenAndIntegratesItExactly) {
+    // p(x) = sum_k c_k x^k, k <= 7, on [a, b]: the interpolant through 8 nodes is p itself, and
+    // its integral the antiderivative's difference.
+    const double c[8] = {0.3, -1.2, 0.7, 0.25, -0.4, 0.1, 0.05, -0.02};
+    const float a = -0.7f, b = 1.3f;
+    auto poly = [&](double x) {
+        double s = 0.0;
+        for (int k = 7; k >= 0; --k)
+            s = s * x + c[k];
+        return s;
+    };
+    double exact = 0.0;
+    for (int k = 0; k < 8; ++k)
+        exact += c[k] * (std::pow(b, k + 1) - std::pow(a, k + 1)) / (k + 1);
+    std::array<Rgb, GaussLegendreInterpolant::kNodes> values;
+    for (int k = 0; k < GaussLegendreInterpolant::kNodes; ++k) {
+        const double x = GaussLegendreInterpolant::node(k, a, b);
+        values[k] = Rgb(static_cast<float>(poly(x)), static_cast<float>(2.0 * poly(x)), 0.0f);
+    }
+    GaussLegendreInterpolant p;
+    p.set(a, b, values);
+    EXPECT_NEAR(p.integral().r, exact, 1e-5 * std::abs(exact) + 1e-6);
+    EXPECT_NEAR(p.integral().g, 2.0 * exact, 2e-5 * std::abs(exact) + 1e-6);
+    EXPECT_EQ(p.integral().b, 0.0f);
+    for (int i = 0; i <= 20; ++i) {
+        const float x = a + (b - a) * static_cast<float>(i) / 20.0f;
+        EXPECT_NEAR(p(x).r, poly(x), 1e-5) << x;
+    }
+    // At a node it returns the node's value (no division by zero).
+    EXPECT_EQ(p(GaussLegendreInterpolant::node(3, a, b)), values[3]);
+}
+
+TEST(GaussLegendreInterpolant, SmoothFunctionToSixDigits) {
+    // exp on [0, 2] (Bernstein ellipse far out): 8 nodes give ~1e-9 in exact arithmetic; float
+    // rounding limits what this checks to ~1e-6.
+    const float a = 0.0f, b = 2.0f;
+    std::array<Rgb, GaussLegendreInterpolant::kNodes> values;
+    for (int k = 0; k < GaussLegendreInterpolant::kNodes; ++k)
+        values[k] = Rgb(std::exp(GaussLegendreInterpolant::node(k, a, b)));
+    GaussLegendreInterpolant p;
+    p.set(a, b, values);
+    EXPECT_NEAR(p.integral().r, std::exp(2.0) - 1.0, 2e-6 * std::exp(2.0));
+    for (int i = 0; i <= 40; ++i) {
+        const float x = a + (b - a) * static_cast<float>(i) / 40.0f;
+        EXPECT_NEAR(p(x).r, std::exp(x), 2e-6 * std::exp(x)) << x;
+    }
+}
+
+struct Mean {
+    double mean = 0.0, stderr_ = 0.0, sd = 0.0;
+};
+
+Mean average(int n, uint64_t seed, const std::function<double(Pcg32&)>& sample) {
+    double sum = 0.0, sum_sq = 0.0;
+    for (int i = 0; i < n; ++i) {
+        Pcg32 rng(seed, static_cast<uint64_t>(i));
+        const double x = sample(rng);
+        sum += x;
+        sum_sq += x * x;
+    }
+    Mean m;
+    m.mean = sum / n;
+    m.sd = std::sqrt(std::max(0.0, sum_sq / n - m.mean * m.mean) * n / (n - 1));
+    m.stderr_ = m.sd / std::sqrt(static_cast<double>(n));
+    return m;
+}
+
+/// F(u, v) = ∫_0^v exp(-u tan xi) dxi by Simpson's rule (Sun et al. 2005, eq. 5).
+double sun_f(double u, double v) {
+    const int n = 20000;
+    const double h = v / n;
+    double s = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        const double f = std::exp(-u * std::tan(i * h));
+        s += (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0)) * f;
+    }
+    return s * h / 3.0;
+}
+
+TEST(AirlightControl, UnshadowedPointLightMatchesSunEtAl2005) {
+    // Sun, Ramamoorthi, Narasimhan & Nayar 2005, "A Practical Analytic Single Scattering Model
+    // for Real Time Rendering", ACM TOG 24(3), eqs. 3-5: isotropic point light of intensity I at
+    // distance D_sv from the viewer, purely scattering medium beta, isotropic phase, view ray
+    // at angle gamma from the light's direction, of length D_vp:
+    //   L = A0 [F(A1, pi/4 + atan((T_vp - T_sv cos g) / (T_sv sin g)) / 2) - F(A1, g/2)],
+    //   A0 = beta^2 I exp(-T_sv cos g) / (2 pi T_sv sin g), A1 = T_sv sin g, T = beta D.
+    // The default estimator (march + single) with the control variate, 0.5 m budget steps.
+    const double beta = 0.4, intensity = 100.0, d_sv = 2.0;
+    const MediumSet fog(
+        {Medium{"fog", HomogeneousMedium{std::nullopt, Rgb(0.0f), Rgb(static_cast<float>(beta)),
+                                         Isotropic{}}}});
+    const std::vector<Light> lamp{
+        Light{"lamp", PointLight{Vec3(0.0f, 0.0f, static_cast<float>(-d_sv)), Rgb(100.0f)}}};
+    struct Case {
+        double gamma_deg, d_vp;
+    };
+    for (const Case c : {Case{30.0, kInfinity}, Case{75.0, kInfinity}, Case{120.0, kInfinity},
+                         Case{50.0, 3.0}, Case{5.0, 8.0}}) {
+        const double g = c.gamma_deg * kPiD / 180.0;
+        const Ray ray{Vec3(0.0f),
+                      Vec3(static_cast<float>(std::sin(g)), 0.0f, static_cast<float>(-std::cos(g))),
+                      0.0f, static_cast<float>(c.d_vp)};
+        const double t_sv = beta * d_sv, a1 = t_sv * std::sin(g);
+        const double upper =
+            c.d_vp >= kInfinity
+                ? kPiD / 2.0
+                : kPiD / 4.0 + 0.5 * std::atan((beta * c.d_vp - t_sv * std::cos(g)) / a1);
+        const double expected = beta * beta * intensity * std::exp(-t_sv * std::cos(g)) /
+                                (2.0 * kPiD * a1) * (sun_f(a1, upper) - sun_f(a1, g / 2.0));
+        const VolumeSettings settings{0.5f};
+        const Mean l = average(2000, 5, [&](Pcg32& rng) {
+            VolumeCounters counters;
+            return integrate_volume(fog, lamp, nullptr, ray, settings, true, rng, counters)
+                .radiance.g;
+        });
+        // 0.5% (issue #8's bound), within 4 standard errors (false failure ~6e-5 per case);
+        // without shadows the control leaves only the interpolation error: the spread of a
+        // single ray's estimate is below 0.1% of the mean (stratified samples without the
+        // control: 0.5-3% at this step).
+        EXPECT_NEAR(l.mean, expected, 0.005 * expected) << "gamma " << c.gamma_deg;
+        EXPECT_NEAR(l.mean, expected, 4.0 * l.stderr_ + 1e-4 * expected) << "gamma " << c.gamma_deg;
+        EXPECT_LT(l.sd, 1e-3 * expected) << "gamma " << c.gamma_deg;
+    }
+}
+
+/// Two spheres between the fog and the lamp.
+class Spheres final : public OcclusionQuery {
+  public:
+    struct Sphere {
+        Vec3 center;
+        float radius;
+    };
+    explicit Spheres(std::vector<Sphere> spheres) : spheres_(std::move(spheres)) {}
+    bool occluded(const Vec3& from, const Vec3& to) const override {
+        for (const Sphere& s : spheres_) {
+            // Closest point of the segment to the centre.
+            const glm::dvec3 a(from), b(to), c(s.center);
+            const glm::dvec3 ab = b - a;
+            const double h = std::clamp(glm::dot(c - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+            if (glm::length(a + h * ab - c) < s.radius)
+                return true;
+        }
+        return false;
+    }
+    bool occluded_direction(const Vec3&, const Vec3&) const override { return false; }
+
+  private:
+    std::vector<Sphere> spheres_;
+};
+
+/// The fog box of bench/povray_bench.py's scenes (lamp above it, outside the fog).
+const Vec3 kBoxLo(-5.0f, -0.05f, -5.0f), kBoxHi(5.0f, 4.6f, 5.0f);
+constexpr double kSigmaA = 0.02, kSigmaS = 0.08;
+
+/// Length of the segment from p to q inside the box (slab method).
+double inside_box(const glm::dvec3& p, const glm::dvec3& q) {
+    const glm::dvec3 d = q - p;
+    double lo = 0.0, hi = 1.0;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0)
+            continue;
+        double t0 = (kBoxLo[a] - p[a]) / d[a], t1 = (kBoxHi[a] - p[a]) / d[a];
+        if (t0 > t1)
+            std::swap(t0, t1);
+        lo = std::max(lo, t0);
+        hi = std::min(hi, t1);
+    }
+    return std::max(0.0, hi - lo) * glm::length(d);
+}
+
+/// Brute force: midpoint rule over the part of the ray inside the fog, 200k points, with the
+/// shadow test of `occlusion` and the light's transmittance from the box geometry.
+template <class Phase>
+double brute_force(const Phase& phase, const Vec3& lamp, double intensity,
+                   const OcclusionQuery& occlusion, const Ray& ray) {
+    const double sigma_t = kSigmaA + kSigmaS;
+    // The ray enters and leaves the box at these t (it starts outside).
+    double t_in = 0.0, t_out = ray.t_max;
+    for (int a = 0; a < 3; ++a) {
+        if (ray.direction[a] == 0.0f)
+            continue;
+        double t0 = (kBoxLo[a] - ray.origin[a]) / ray.direction[a];
+        double t1 = (kBoxHi[a] - ray.origin[a]) / ray.direction[a];
+        if (t0 > t1)
+            std::swap(t0, t1);
+        t_in = std::max(t_in, t0);
+        t_out = std::min(t_out, t1);
+    }
+    const int n = 200000;
+    const double dt = (t_out - t_in) / n;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double t = t_in + (i + 0.5) * dt;
+        const glm::dvec3 x = glm::dvec3(ray.origin) + t * glm::dvec3(ray.direction);
+        if (occlusion.occluded(Vec3(x), lamp))
+            continue;
+        const glm::dvec3 to_light = glm::dvec3(lamp) - x;
+        const double r = glm::length(to_light);
+        const float mu = scattering_cosine(-ray.direction, Vec3(to_light / r));
+        sum += kSigmaS * eval(phase, mu) * intensity / (r * r) *
+               std::exp(-sigma_t * (inside_box(x, glm::dvec3(lamp)) + (t - t_in)));
+    }
+    return sum * dt;
+}
+
+template <class Phase>
+void expect_shadowed_matches_brute_force(const Phase& phase, const Ray& ray, float step_m) {
+    const Vec3 lamp(2.5f, 5.0f, -1.0f);
+    const double intensity = 60.0;
+    const MediumSet fog(
+        {Medium{"fog", HomogeneousMedium{Bounds3{kBoxLo, kBoxHi}, Rgb(static_cast<float>(kSigmaA)),
+                                         Rgb(static_cast<float>(kSigmaS)), phase}}});
+    const std::vector<Light> lights{
+        Light{"lamp", PointLight{lamp, Rgb(static_cast<float>(intensity))}}};
+    // The benchmark's ball, and a smaller one casting a second shaft across the same ray.
+    const Spheres occlusion({{Vec3(0.3f, 1.6f, 0.0f), 0.6f}, {Vec3(1.6f, 3.0f, -0.6f), 0.3f}});
+    const double expected = brute_force(phase, lamp, intensity, occlusion, ray);
+    const double unshadowed = brute_force(phase, lamp, intensity, Spheres({}), ray);
+    // The shafts remove a visible share of the light: the shadowed part is really tested.
+    ASSERT_LT(expected, 0.9 * unshadowed);
+    ASSERT_GT(expected, 0.1 * unshadowed);
+    const VolumeSettings settings{step_m};
+    const Mean l = average(100000, 9, [&](Pcg32& rng) {
+        VolumeCounters counters;
+        return integrate_volume(fog, lights, &occlusion, ray, settings, true, rng, counters)
+            .radiance.g;
+    });
+    // Unbiased: within 4 standard errors (false failure ~6e-5) plus the brute force's own
+    // midpoint error (~1e-6 relative at 200k points), and tight enough to see a 1% bias.
+    EXPECT_NEAR(l.mean, expected, 4.0 * l.stderr_ + 1e-5 * expected)
+        << "stderr " << l.stderr_ << " unshadowed " << unshadowed;
+    EXPECT_LT(4.0 * l.stderr_, 0.01 * expected);
+}
+
+// A ray at y = 0.8 through both shafts, as a camera ray of the benchmark sees them.
+const Ray kThroughShafts{Vec3(-6.0f, 0.8f, 0.3f), glm::normalize(Vec3(1.0f, 0.15f, -0.1f)), 0.0f,
+                         20.0f};
+
+TEST(AirlightControl, ShadowedHgMatchesBruteForce) {
+    expect_shadowed_matches_brute_force(HenyeyGreenstein{0.5f}, kThroughShafts, 0.5f);
+    // Two samples per stretch: the control fits as well, the shadows are undersampled.
+    expect_shadowed_matches_brute_force(HenyeyGreenstein{0.5f}, kThroughShafts, 6.0f);
+}
+
+TEST(AirlightControl, ShadowedRayleighMatchesBruteForce) {
+    expect_shadowed_matches_brute_force(Rayleigh{}, kThroughShafts, 1.0f);
+}
+
+TEST(AirlightControl, UnbiasedWhereTheControlFitsBadly) {
+    // A ray passing 1 cm from a lamp inside the fog, with a strongly forward phase: in the
+    // equiangular angle the forward peak (mu -> 1 as the ray approaches from 9 m away) is
+    // ~0.1 rad wide out of pi, far from a degree-7 polynomial. The estimate stays unbiased;
+    // only its variance grows.
+    const Vec3 lamp(4.0f, 1.0f, 4.0f);
+    const double intensity = 10.0;
+    const HenyeyGreenstein phase{0.9f};
+    const MediumSet fog(
+        {Medium{"fog", HomogeneousMedium{Bounds3{kBoxLo, kBoxHi}, Rgb(static_cast<float>(kSigmaA)),
+                                         Rgb(static_cast<float>(kSigmaS)), phase}}});
+    const std::vector<Light> lights{
+        Light{"lamp", PointLight{lamp, Rgb(static_cast<float>(intensity))}}};
+    const Ray ray{Vec3(-6.0f, 1.01f, 4.0f), Vec3(1.0f, 0.0f, 0.0f), 0.0f, 20.0f};
+    // Brute force without a box exit formula: the light is inside, so the shadow ray's length
+    // in the fog is the whole distance; midpoint rule in angle about the lamp (the peak).
+    const double sigma_t = kSigmaA + kSigmaS;
+    const double d = 0.01, t_lamp = 10.0, t_in = 1.0, t_out = 11.0;
+    const double theta_a = std::atan((t_in - t_lamp) / d),
+                 theta_b = std::atan((t_out - t_lamp) / d);
+    const int n = 400000;
+    double expected = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double theta = theta_a + (i + 0.5) * (theta_b - theta_a) / n;
+        const double t = t_lamp + d * std::tan(theta), r = d / std::cos(theta);
+        // mu between the propagation (+x) and the direction to the light.
+        const float mu = static_cast<float>(-(t - t_lamp) / r);
+        const double f =
+            kSigmaS * eval(phase, mu) * intensity / (r * r) * std::exp(-sigma_t * (r + t - t_in));
+        expected += f * d / (std::cos(theta) * std::cos(theta));
+    }
+    expected *= (theta_b - theta_a) / n;
+    const Mean l = average(100000, 11, [&](Pcg32& rng) {
+        VolumeCounters counters;
+        return integrate_volume(fog, lights, nullptr, ray, VolumeSettings{2.0f}, true, rng,
+                                counters)
+            .radiance.g;
+    });
+    EXPECT_NEAR(l.mean, expected, 4.0 * l.stderr_ + 1e-4 * expected) << "stderr " << l.stderr_;
+    EXPECT_LT(4.0 * l.stderr_, 0.01 * expected);
+    EXPECT_GT(l.sd, 0.01 * expected);  // the control does fit badly here
+}
+
+}  // namespace
+}  // namespace kasumi
