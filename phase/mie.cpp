@@ -82,7 +82,7 @@ Mie make_mie(double x, Complex m_relative) {
     summary->n_terms = sphere.n_terms();
     summary->efficiencies = sphere.efficiencies();
     summary->g = summary->efficiencies.g;
-    return Mie{table_from_theta(theta, s11), summary};
+    return Mie{{table_from_theta(theta, s11)}, summary};
 }
 
 Mie make_mie_sphere(double radius_um, double wavelength_nm, Complex m, double medium_index) {
@@ -164,27 +164,7 @@ Mie make_mie_polydisperse(const SizeDistribution& sizes, double wavelength_nm, C
     summary->c_ext_um2 = c_ext / weight_sum;
     summary->c_sca_um2 = c_sca / weight_sum;
     summary->g = g_c_sca / c_sca;
-    return Mie{table_from_theta(theta, s11), summary};
-}
-
-double eval_precise(const Mie& p, double mu) {
-    return p.table->eval(mu);
-}
-
-float eval(const Mie& p, float mu) {
-    return static_cast<float>(eval_precise(p, mu));
-}
-
-float pdf(const Mie& p, float mu) {
-    return eval(p, mu);
-}
-
-PhaseSample sample(const Mie& p, const Vec3& wo, Vec2 u) {
-    return sample_phase_table(*p.table, wo, u);
-}
-
-float mean_cosine(const Mie& p) {
-    return static_cast<float>(p.table->mean_cosine());
+    return Mie{{table_from_theta(theta, s11)}, summary};
 }
 
 }  // namespace kasumi

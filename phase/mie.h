@@ -28,8 +28,9 @@ struct MieSummary {
     double g = 0.0;                ///< exact mean cosine of the (averaged) phase function
 };
 
-struct Mie {
-    std::shared_ptr<const PhaseTable> table;
+/// eval, pdf, sample and mean_cosine are TablePhase's; the table's mean cosine is within its
+/// resolution of summary->g.
+struct Mie : TablePhase {
     std::shared_ptr<const MieSummary> summary;
 };
 
@@ -56,13 +57,5 @@ Mie make_mie_sphere(double radius_um, double wavelength_nm, Complex m, double me
 /// (64 .. 2000). Cross sections are per particle, averaged over the number distribution.
 Mie make_mie_polydisperse(const SizeDistribution& sizes, double wavelength_nm, Complex m,
                           double medium_index, int n_radii = 0);
-
-float eval(const Mie& p, float mu);
-/// The table's p(mu) in double precision; eval() is this value rounded to float.
-double eval_precise(const Mie& p, double mu);
-float pdf(const Mie& p, float mu);
-PhaseSample sample(const Mie& p, const Vec3& wo, Vec2 u);
-/// The tabulated function's mean cosine (within the table's resolution of summary->g).
-float mean_cosine(const Mie& p);
 
 }  // namespace kasumi

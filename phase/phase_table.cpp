@@ -126,4 +126,24 @@ PhaseSample sample_phase_table(const PhaseTable& table, const Vec3& wo, Vec2 u) 
     return phase_sample_about(wo, mu, kTwoPi * u.y, table.eval(mu));
 }
 
+double eval_precise(const TablePhase& p, double mu) {
+    return p.table->eval(mu);
+}
+
+float eval(const TablePhase& p, float mu) {
+    return static_cast<float>(eval_precise(p, mu));
+}
+
+float pdf(const TablePhase& p, float mu) {
+    return eval(p, mu);
+}
+
+PhaseSample sample(const TablePhase& p, const Vec3& wo, Vec2 u) {
+    return sample_phase_table(*p.table, wo, u);
+}
+
+float mean_cosine(const TablePhase& p) {
+    return static_cast<float>(p.table->mean_cosine());
+}
+
 }  // namespace kasumi

@@ -4,6 +4,7 @@
 /// eval, pdf and sample agree to rounding and the table integrates to 1 over the sphere.
 #include "phase/phase_sample.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,5 +43,19 @@ PhaseTable read_phase_table_csv(const std::string& path);
 /// Samples a direction from a table: wi from the exact CDF inverse in mu, azimuth uniform.
 /// value == pdf == table.eval(mu) per steradian.
 PhaseSample sample_phase_table(const PhaseTable& table, const Vec3& wo, Vec2 u);
+
+/// A phase model whose density is a shared PhaseTable; Tabulated and Mie derive from it, and
+/// the functions below are their phase-function interface. Copies never copy the table.
+struct TablePhase {
+    std::shared_ptr<const PhaseTable> table;
+};
+
+float eval(const TablePhase& p, float mu);
+/// The table's p(mu) in double precision; eval() is this value rounded to float.
+double eval_precise(const TablePhase& p, double mu);
+float pdf(const TablePhase& p, float mu);
+PhaseSample sample(const TablePhase& p, const Vec3& wo, Vec2 u);
+/// The mean cosine of the interpolant (exact for the piecewise-linear table).
+float mean_cosine(const TablePhase& p);
 
 }  // namespace kasumi
