@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# What a kasumi process loads: OpenVDB only through its module (libkasumi_vdb.so, dlopen'd on
+# the first .vdb read or write), so commands and scenes without grids never load it; a VDB scene
+# still renders through the module; a missing or foreign module is a clear runtime error (exit
+# 1) naming the paths tried, with no output written. And `--aovs none` writes exactly R, G, B, A.
+# usage: startup_cli_test.sh KASUMI_BINARY SOURCE_DIR
+set -u
+kasumi="$1"
+src="$2"
+source "$(dirname "$0")/cli_lib.sh"
+
+# loaded_libs ARGS...: runs kasumi under the dynamic loader's trace; prints the files it loaded.
+loaded_libs() { LD_DEBUG=files "$kasumi" "$@" 2>&1 >/dev/null | grep -o 'file=[^ ]*' | sort -u; }
+
+libs=$(loaded_libs --version)
+echo "$libs" | grep -q "file=" || fail "LD_DEBUG=files shows nothing: $libs"
+echo "$libs" | grep -q "openvdb\|kasumi_vdb" && fail "--version loads OpenVDB: $libs"
+
+cat >"$work/fog.json" <<JSON
+{
+  "camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+  "film": {"width": 8, "height": 6, "spp": 1},
+  "lights": [{"type": "directional", "direction": [0, -1, 0], "illuminance_lux": 1000}],
+  "media": [{"type": "homogeneous", "sigma_a": 0.01, "sigma_s": 0.05}]
+}
+JSON
+libs=$(loaded_libs render "$work/fog.json" -o "$work/fog.exr" --no-preview -q)
+echo "$libs" | grep -q "openvdb\|kasumi_vdb" && fail "a scene without grids loads OpenVDB: $libs"
+# Without grids the module is not needed at all.
+KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 0 "" -- render "$work/fog.json" -o "$work/fog2.exr" --no-preview -q
+
+# A grid scene loads the module and renders.
+expect_exit 0 "" -- make-cloud --res 16 --seed 3 -o "$work/c16.vdb"
+cat >"$work/cloud.json" <<JSON
+{
+  "camera": {"position": [0, 500, 3000], "look_at": [0, 500, 0]},
+  "film": {"width": 8, "height": 6, "spp": 1},
+  "lights": [{"type": "directional", "direction": [0, -1, 0], "illuminance_lux": 1000}],
+  "media": [{"type": "vdb", "file": "c16.vdb", "density_scale": 0.02, "albedo": 0.9}]
+}
+JSON
+libs=$(loaded_libs render "$work/cloud.json" -o "$work/cloud.exr" --no-preview -q)
+echo "$libs" | grep -q "kasumi_vdb" || fail "a grid scene did not load the module: $libs"
+[ -s "$work/cloud.exr" ] || fail "the grid scene wrote no image"
+
+# A missing module: exit 1, the path tried and the variable to set; nothing written.
+KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 1 \
+  "OpenVDB module.*/nonexistent/libkasumi_vdb.so \(no such file\).*KASUMI_VDB_MODULE" -- \
+  render "$work/cloud.json" -o "$work/missing.exr" --no-preview -q
+[ -e "$work/missing.exr" ] && fail "a render without its module wrote an image"
+KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 1 "/nonexistent/libkasumi_vdb.so" -- \
+  make-cloud --res 8 --seed 1 -o "$work/none.vdb"
+[ -e "$work/none.vdb" ] && fail "make-cloud without its module wrote a grid"
+# A file that is not a loadable module.
+echo "not a library" >"$work/fake.so"
+KASUMI_VDB_MODULE="$work/fake.so" expect_exit 1 "OpenVDB module.*fake.so \(" -- \
+  check "$work/cloud.json"
+
+# exr_channels FILE: the channel names of an EXR header's chlist attribute, comma-separated
+# (OpenEXR file layout: magic, version, then attributes name\0 type\0 int32 size, value).
+exr_channels() {
+  python3 - "$1" <<'PY'
+import struct, sys
+d = open(sys.argv[1], "rb").read()
+assert d[:4] == b"\x76\x2f\x31\x01", "not an EXR"
+p = 8
+while d[p] != 0:
+    name_end = d.index(b"\0", p); name = d[p:name_end]
+    type_end = d.index(b"\0", name_end + 1)
+    (size,) = struct.unpack("<i", d[type_end + 1:type_end + 5])
+    value = d[type_end + 5:type_end + 5 + size]
+    if name == b"channels":
+        names, q = [], 0
+        while value[q] != 0:
+            e = value.index(b"\0", q); names.append(value[q:e].decode()); q = e + 1 + 16
+        print(",".join(names)); break
+    p = type_end + 5 + size
+PY
+}
+expect_exit 0 "" -- render "$work/fog.json" -o "$work/none.exr" --no-preview -q --aovs none
+[ "$(exr_channels "$work/none.exr")" = "A,B,G,R" ] || fail "--aovs none: channels $(exr_channels "$work/none.exr")"
+expect_exit 0 "" -- render "$work/fog.json" -o "$work/all.exr" --no-preview -q
+[ "$(exr_channels "$work/all.exr")" = "A,B,G,R,albedo.B,albedo.G,albedo.R,depth.Z,surface.B,surface.G,surface.R,transmittance.B,transmittance.G,transmittance.R,volume.B,volume.G,volume.R" ] ||
+  fail "default --aovs all: channels $(exr_channels "$work/all.exr")"
+expect_exit 0 "" -- render "$work/fog.json" -o "$work/tv.exr" --no-preview -q --aovs transmittance,depth
+[ "$(exr_channels "$work/tv.exr")" = "A,B,G,R,depth.Z,transmittance.B,transmittance.G,transmittance.R" ] ||
+  fail "--aovs transmittance,depth: channels $(exr_channels "$work/tv.exr")"
+
+if [ "$failures" -gt 0 ]; then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "startup cli: all checks passed"
