@@ -170,6 +170,7 @@ void add_render_command(CLI::App& root) {
         render_options.frame = static_cast<uint32_t>(options->frame);
         render_options.progress = !scene_options.quiet;
         render_options.cancel = &g_cancel;
+        render_options.aovs = paths.aovs;
         const RenderResult result = render_image(runtime, render_options);
         std::signal(SIGINT, SIG_DFL);
         std::signal(SIGTERM, SIG_DFL);

@@ -1,5 +1,7 @@
 #include "core/film.h"
 
+#include "core/error.h"
+
 #include <algorithm>
 #include <mutex>
 #include <sstream>
@@ -48,128 +50,144 @@ bool parse_film_aovs(const std::string& text, uint32_t& aovs) {
     return any;
 }
 
-std::vector<std::vector<Film::Pixel>>& Film::kept_storage() {
-    static std::vector<std::vector<Pixel>> kept;
+std::vector<std::vector<float>>& Film::kept_storage() {
+    static std::vector<std::vector<float>> kept;
     return kept;
 }
 
-Film::Film(int width, int height) : m_width(width), m_height(height) {
-    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
-    if (n >= kKeepMinPixels) {
+namespace {
+
+/// The AOVs in channel order: bit, channels, name prefix ("depth." has only Z).
+struct AovLayout {
+    uint32_t bit;
+    int channels;
+    const char* prefix;
+};
+constexpr AovLayout kAovLayout[5] = {{kAovAlbedo, 3, "albedo."},
+                                     {kAovDepth, 1, "depth."},
+                                     {kAovSurface, 3, "surface."},
+                                     {kAovVolume, 3, "volume."},
+                                     {kAovTransmittance, 3, "transmittance."}};
+
+int channel_count(uint32_t aovs) {
+    int n = 4;
+    for (const AovLayout& a : kAovLayout)
+        n += (aovs & a.bit) != 0 ? a.channels : 0;
+    return n;
+}
+
+}  // namespace
+
+Film::Film(int width, int height, uint32_t aovs)
+    : m_width(width),
+      m_height(height),
+      m_aovs(aovs & kAovAll),
+      m_pixels(static_cast<size_t>(width) * static_cast<size_t>(height)) {
+    int next = 4;
+    for (int k = 0; k < 5; ++k) {
+        m_first[k] = (m_aovs & kAovLayout[k].bit) != 0 ? next : -1;
+        next += m_first[k] >= 0 ? kAovLayout[k].channels : 0;
+    }
+    const size_t size = static_cast<size_t>(next) * m_pixels;
+    if (m_pixels >= kKeepMinPixels) {
         std::lock_guard<std::mutex> lock(kept_mutex());
         auto& kept = kept_storage();
         for (auto it = kept.begin(); it != kept.end(); ++it) {
-            if (it->size() == n) {
-                m_pixels = std::move(*it);
+            if (it->size() == size) {
+                m_planes = std::move(*it);
                 kept.erase(it);
                 break;
             }
         }
     }
-    if (m_pixels.size() == n)
-        std::fill(m_pixels.begin(), m_pixels.end(), Pixel{});
+    if (m_planes.size() == size)
+        std::fill(m_planes.begin(), m_planes.end(), 0.0f);
     else
-        m_pixels.assign(n, Pixel{});
+        m_planes.assign(size, 0.0f);
+    if (m_first[4] >= 0)  // empty pixels: transmittance 1
+        std::fill(plane(m_first[4]), plane(m_first[4] + 3), 1.0f);
 }
 
 Film::~Film() {
-    if (m_pixels.size() < kKeepMinPixels)
+    if (m_pixels < kKeepMinPixels)
         return;
     try {
         std::lock_guard<std::mutex> lock(kept_mutex());
         auto& kept = kept_storage();
         if (kept.size() >= kKeepFilms)
             kept.erase(kept.begin());  // keep the newest sizes
-        kept.push_back(std::move(m_pixels));
+        kept.push_back(std::move(m_planes));
     } catch (...) {
         // Keeping is an optimisation: if it fails, the storage is simply freed.
     }
 }
 
 void Film::set_pixel(int x, int y, const PixelSample& sum, int n, int hits, float depth_sum) {
-    Pixel& p = m_pixels[static_cast<size_t>(y) * m_width + x];
+    const size_t i = static_cast<size_t>(y) * static_cast<size_t>(m_width) + static_cast<size_t>(x);
     const float inv = 1.0f / static_cast<float>(n);
-    p.radiance = sum.radiance * inv;
-    p.surface = sum.surface * inv;
-    p.volume = sum.volume * inv;
-    p.transmittance = sum.transmittance * inv;
-    p.albedo = sum.albedo * inv;
-    p.depth = hits > 0 ? depth_sum / static_cast<float>(hits) : 0.0f;
+    const Rgb transmittance = sum.transmittance * inv;
+    const auto put3 = [&](int first, const Rgb& v) {
+        for (int c = 0; c < 3; ++c)
+            plane(first + c)[i] = v[c] * inv;
+    };
+    put3(0, sum.radiance);
     // Samples that hit are opaque; the others are as opaque as the media in front of the sky.
     const float hit_fraction = static_cast<float>(hits) * inv;
     const float miss_opacity = (1.0f - hit_fraction) > 0.0f
-                                   ? std::clamp(1.0f - luminance(p.transmittance), 0.0f, 1.0f)
+                                   ? std::clamp(1.0f - luminance(transmittance), 0.0f, 1.0f)
                                    : 0.0f;
-    p.alpha = hit_fraction + (1.0f - hit_fraction) * miss_opacity;
+    plane(3)[i] = hit_fraction + (1.0f - hit_fraction) * miss_opacity;
+    if (m_first[0] >= 0)
+        put3(m_first[0], sum.albedo);
+    if (m_first[1] >= 0)
+        plane(m_first[1])[i] = hits > 0 ? depth_sum / static_cast<float>(hits) : 0.0f;
+    if (m_first[2] >= 0)
+        put3(m_first[2], sum.surface);
+    if (m_first[3] >= 0)
+        put3(m_first[3], sum.volume);
+    if (m_first[4] >= 0)
+        put3(m_first[4], sum.transmittance);
 }
 
 Image Film::to_image() const {
     Image image;
-    to_image(image, kAovAll);
+    to_image(image, m_aovs);
     return image;
 }
 
 void Film::to_image(Image& image, uint32_t aovs) const {
+    KASUMI_CHECK((aovs & ~m_aovs) == 0);  // only stored AOVs can be read out
+    // Channel names and source planes in output order: R, G, B, A, then the chosen AOVs.
     const char* rgb[3] = {"R", "G", "B"};
     std::vector<std::string> names = {"R", "G", "B", "A"};
-    const auto add3 = [&](uint32_t bit, const char* prefix) {
-        if ((aovs & bit) != 0) {
-            for (int c = 0; c < 3; ++c)
-                names.push_back(std::string(prefix) + rgb[c]);
+    std::vector<int> source = {0, 1, 2, 3};
+    names.reserve(static_cast<size_t>(channel_count(aovs)));
+    for (int k = 0; k < 5; ++k) {
+        if ((aovs & kAovLayout[k].bit) == 0)
+            continue;
+        for (int c = 0; c < kAovLayout[k].channels; ++c) {
+            names.push_back(std::string(kAovLayout[k].prefix) +
+                            (kAovLayout[k].channels == 1 ? "Z" : rgb[c]));
+            source.push_back(m_first[k] + c);
         }
-    };
-    add3(kAovAlbedo, "albedo.");
-    if ((aovs & kAovDepth) != 0)
-        names.push_back("depth.Z");
-    add3(kAovSurface, "surface.");
-    add3(kAovVolume, "volume.");
-    add3(kAovTransmittance, "transmittance.");
+    }
 
-    const size_t n = m_pixels.size();
     bool reusable =
         image.width == m_width && image.height == m_height && image.channels.size() == names.size();
     for (size_t i = 0; reusable && i < names.size(); ++i)
-        reusable = image.channels[i].name == names[i] && image.channels[i].data.size() == n;
+        reusable = image.channels[i].name == names[i] && image.channels[i].data.size() == m_pixels;
     if (!reusable) {
         image = Image(m_width, m_height);
         image.channels.resize(names.size());
-        for (size_t i = 0; i < names.size(); ++i) {
+        for (size_t i = 0; i < names.size(); ++i)
             image.channels[i].name = names[i];
-            image.channels[i].data.resize(n);  // every value is written below
-        }
+    }
+    for (size_t i = 0; i < names.size(); ++i) {
+        const float* from = plane(source[i]);
+        image.channels[i].data.assign(from, from + m_pixels);  // no reallocation when reused
     }
     image.metadata.clear();
     image.chromaticities = Chromaticities{};
-
-    // Channels in the order of `names`: R, G, B, A, then the chosen AOVs.
-    float* out[17];
-    for (size_t i = 0; i < names.size(); ++i)
-        out[i] = image.channels[i].data.data();
-    for (size_t i = 0; i < n; ++i) {
-        const Pixel& p = m_pixels[i];
-        size_t k = 0;
-        for (int c = 0; c < 3; ++c)
-            out[k++][i] = p.radiance[c];
-        out[k++][i] = p.alpha;
-        if ((aovs & kAovAlbedo) != 0) {
-            for (int c = 0; c < 3; ++c)
-                out[k++][i] = p.albedo[c];
-        }
-        if ((aovs & kAovDepth) != 0)
-            out[k++][i] = p.depth;
-        if ((aovs & kAovSurface) != 0) {
-            for (int c = 0; c < 3; ++c)
-                out[k++][i] = p.surface[c];
-        }
-        if ((aovs & kAovVolume) != 0) {
-            for (int c = 0; c < 3; ++c)
-                out[k++][i] = p.volume[c];
-        }
-        if ((aovs & kAovTransmittance) != 0) {
-            for (int c = 0; c < 3; ++c)
-                out[k++][i] = p.transmittance[c];
-        }
-    }
 }
 
 }  // namespace kasumi

@@ -37,11 +37,13 @@ bool parse_film_aovs(const std::string& text, uint32_t& aovs);
 
 class Film {
   public:
-    /// All pixels start empty (black, transmittance 1, alpha 0). The pixel storage of a
-    /// destroyed film is kept for the next film of the same size (a sequence renders one film
-    /// per frame: a 1280x720 film is 63 MB whose fresh pages cost more to fault in than to
-    /// clear); at most two films' storage is kept.
-    Film(int width, int height);
+    /// All pixels start empty (black, transmittance 1, alpha 0). The film stores R, G, B, A and
+    /// only the AOVs in `aovs` (FilmAov bits), one plane per channel in the order of to_image:
+    /// a render that writes no AOVs allocates, fills and reads out 4 floats per pixel, not 17.
+    /// The storage of a destroyed film is kept for the next film of the same size and AOVs (a
+    /// sequence renders one film per frame: a 1280x720 film with every AOV is 63 MB whose fresh
+    /// pages cost more to fault in than to clear); at most two films' storage is kept.
+    Film(int width, int height, uint32_t aovs = kAovAll);
     ~Film();
     Film(const Film&) = default;
     Film(Film&&) noexcept = default;
@@ -50,32 +52,40 @@ class Film {
 
     int width() const { return m_width; }
     int height() const { return m_height; }
+    uint32_t aovs() const { return m_aovs; }  ///< the AOVs stored (FilmAov bits)
 
     /// Adds the mean of `n` samples already summed in `sum` for pixel (x, y); `hits` of them
     /// reached a surface and `depth_sum` is their summed depth.
     void set_pixel(int x, int y, const PixelSample& sum, int n, int hits, float depth_sum);
 
-    /// The image with channels R,G,B,A, albedo.*, depth.Z, surface.*, volume.*, transmittance.*.
-    /// Alpha is the fraction of samples that hit a surface, plus the opacity 1 - T of the media
-    /// for the rest (luminance-weighted).
+    /// The image with channels R,G,B,A, then the stored AOVs among albedo.*, depth.Z, surface.*,
+    /// volume.*, transmittance.*, in that order. Alpha is the fraction of samples that hit a
+    /// surface, plus the opacity 1 - T of the media for the rest (luminance-weighted).
     Image to_image() const;
 
     /// The same into `image`, reusing its channel buffers when it already has this film's size
     /// and channels (no allocation: what a sequence does frame after frame); `aovs` (FilmAov
-    /// bits) chooses the AOV channels, in the order above. Metadata is cleared.
-    void to_image(Image& image, uint32_t aovs = kAovAll) const;
+    /// bits, a subset of aovs(): anything else is a programming error) chooses the AOV
+    /// channels, in the order above. One copy per plane. Metadata is cleared.
+    void to_image(Image& image, uint32_t aovs) const;
+    void to_image(Image& image) const { to_image(image, m_aovs); }
 
   private:
-    struct Pixel {
-        Rgb radiance{0.0f}, surface{0.0f}, volume{0.0f}, transmittance{1.0f}, albedo{0.0f};
-        float depth = 0.0f;
-        float alpha = 0.0f;
-    };
-    /// Pixel storage of destroyed films, kept for reuse (guarded by a mutex in film.cpp).
-    static std::vector<std::vector<Pixel>>& kept_storage();
+    /// Storage of destroyed films, kept for reuse (guarded by a mutex in film.cpp).
+    static std::vector<std::vector<float>>& kept_storage();
+    /// Plane `channel` (0..3: R, G, B, A, then the stored AOVs' channels in order).
+    float* plane(int channel) { return m_planes.data() + static_cast<size_t>(channel) * m_pixels; }
+    const float* plane(int channel) const {
+        return m_planes.data() + static_cast<size_t>(channel) * m_pixels;
+    }
 
     int m_width, m_height;
-    std::vector<Pixel> m_pixels;
+    uint32_t m_aovs;
+    size_t m_pixels;
+    /// First plane of each AOV (index by bit position: albedo, depth, surface, volume,
+    /// transmittance), -1 if not stored.
+    int m_first[5];
+    std::vector<float> m_planes;  ///< channel-major: plane c holds pixel i at c * m_pixels + i
 };
 
 }  // namespace kasumi

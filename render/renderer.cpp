@@ -40,7 +40,7 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
     const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
     const int threads = options.threads > 0 ? options.threads : desc.render.threads;
 
-    RenderResult result{Film(width, height), {}, 0.0, 1, false};
+    RenderResult result{Film(width, height, options.aovs), {}, 0.0, 1, false};
     std::mutex counters_mutex;
     std::atomic<bool> stopped{false};
     Progress progress("render", static_cast<uint64_t>(tiles_x) * tiles_y, options.progress);

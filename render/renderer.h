@@ -16,6 +16,7 @@ struct RenderOptions {
     bool progress = true;
     const std::atomic<bool>* cancel =
         nullptr;  ///< set asynchronously to stop after the current tiles
+    uint32_t aovs = kAovAll;  ///< FilmAov bits the film stores (only those can be written)
 };
 
 struct RenderResult {

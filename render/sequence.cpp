@@ -276,6 +276,7 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         render_options.frame = static_cast<uint32_t>(frame);
         render_options.progress = options.progress;
         render_options.cancel = options.cancel;
+        render_options.aovs = options.aovs;
         RenderResult result = render_image(runtime, render_options);
         const ReuseCounts reuse = scene.cache.end_frame();
         if (result.interrupted) {

@@ -12,8 +12,8 @@ namespace kasumi {
 namespace {
 
 /// A film whose every pixel holds values that depend on (x, y) and `salt`.
-Film make_film(int width, int height, float salt) {
-    Film film(width, height);
+Film make_film(int width, int height, float salt, uint32_t aovs = kAovAll) {
+    Film film(width, height, aovs);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const float v = salt + static_cast<float>(x) + 100.0f * static_cast<float>(y);
@@ -83,6 +83,63 @@ TEST(Film, RecycledStorageStartsEmpty) {
     { const Film used = make_film(width, height, 3.0f); }
     const Film film(width, height);  // takes the storage of `used`
     const Image image = film.to_image();
+    for (const ImageChannel& c : image.channels) {
+        const float expected = c.name.rfind("transmittance.", 0) == 0 ? 1.0f : 0.0f;
+        for (size_t i = 0; i < c.data.size(); ++i) {
+            if (c.data[i] != expected) {
+                ADD_FAILURE() << c.name << " pixel " << i << " = " << c.data[i];
+                break;
+            }
+        }
+    }
+}
+
+TEST(Film, StoresOnlyTheChosenAovsWithTheFullFilmsValues) {
+    const Image all = make_film(7, 5, 0.25f).to_image();
+    const uint32_t choices[] = {kAovNone, kAovDepth | kAovVolume, kAovTransmittance,
+                                kAovAlbedo | kAovSurface};
+    for (const uint32_t aovs : choices) {
+        const Film film = make_film(7, 5, 0.25f, aovs);
+        EXPECT_EQ(film.aovs(), aovs);
+        Image expected_names;
+        make_film(1, 1, 0.0f).to_image(expected_names, aovs);
+        const Image image = film.to_image();
+        EXPECT_EQ(names_of(image), names_of(expected_names)) << "aovs " << aovs;
+        for (const ImageChannel& c : image.channels)
+            EXPECT_EQ(c.data, all.find(c.name)->data) << c.name << ", aovs " << aovs;
+    }
+}
+
+TEST(Film, PixelsAreSampleMeansAndAlphaNeedsNoStoredTransmittance) {
+    // 4 samples, 2 of which hit at depths summing to 6 m; summed transmittance 2 (mean 0.5):
+    // alpha = hit fraction 1/2 + (1 - 1/2) * (1 - luminance(T) = 0.5) = 0.75.
+    PixelSample sum;
+    sum.radiance = Rgb(4.0f, 8.0f, 12.0f);
+    sum.transmittance = Rgb(2.0f);
+    for (const uint32_t aovs : {uint32_t{kAovNone}, uint32_t{kAovAll}}) {
+        Film film(2, 1, aovs);
+        film.set_pixel(1, 0, sum, 4, 2, 6.0f);
+        const Image image = film.to_image();
+        EXPECT_FLOAT_EQ(image.find("R")->data[1], 1.0f);
+        EXPECT_FLOAT_EQ(image.find("G")->data[1], 2.0f);
+        EXPECT_FLOAT_EQ(image.find("B")->data[1], 3.0f);
+        EXPECT_FLOAT_EQ(image.find("A")->data[1], 0.75f);
+        EXPECT_EQ(image.find("A")->data[0], 0.0f);  // never set: empty
+        if (aovs == kAovAll) {
+            EXPECT_FLOAT_EQ(image.find("depth.Z")->data[1], 3.0f);
+            EXPECT_FLOAT_EQ(image.find("transmittance.G")->data[1], 0.5f);
+            EXPECT_EQ(image.find("transmittance.G")->data[0], 1.0f);
+        }
+    }
+}
+
+TEST(Film, RecycledStorageOfAnAovSubsetStartsEmpty) {
+    const int width = 320, height = 240;
+    const uint32_t aovs = kAovTransmittance | kAovDepth;
+    { const Film used = make_film(width, height, 3.0f, aovs); }
+    const Film film(width, height, aovs);  // storage of the same size: taken from `used`
+    const Image image = film.to_image();
+    ASSERT_EQ(image.channels.size(), 8u);
     for (const ImageChannel& c : image.channels) {
         const float expected = c.name.rfind("transmittance.", 0) == 0 ? 1.0f : 0.0f;
         for (size_t i = 0; i < c.data.size(); ++i) {
