@@ -5,6 +5,7 @@
 #include "render/photon_map.h"
 #include "render/photon_settings.h"
 
+#include <optional>
 #include <vector>
 
 namespace kasumi {
@@ -28,12 +29,12 @@ struct PhotonQueryScratch {
 /// max_radius (the whole search disc: fewer photons than k is a low density, not a small disc).
 float estimate_radius(const std::vector<PhotonNeighbour>& found, int k, float max_radius);
 
-/// Reflected radiance L_r(x, wo) ≈ Σ f_r(x, wi_p, wo) ΔΦ_p w(d_p) (Jensen 2001, eq. 7.6) over the
-/// k nearest photons within max_radius of x that arrived on the side n faces (dot(n, wi_p) > 0).
-/// `brdf(wi)` returns f_r per steradian. With brdf ≡ 1 the result is the irradiance E (lux).
-template <class Brdf>
-Rgb surface_estimate(const PhotonMap& map, const Vec3& x, const Vec3& n, int k, float max_radius,
-                     PhotonFilter filter, PhotonQueryScratch& scratch, Brdf&& brdf) {
+/// Σ c_p w(d_p) over the k nearest photons within max_radius of x, with the filter's kernel in
+/// `dims` dimensions (2: a disc on a surface, 3: a ball in a medium). `contribution(photon)`
+/// returns the photon's c_p, or nothing to leave it out.
+template <class Contribution>
+Rgb kernel_estimate(const PhotonMap& map, const Vec3& x, int dims, int k, float max_radius,
+                    PhotonFilter filter, PhotonQueryScratch& scratch, Contribution&& contribution) {
     if (map.empty())
         return Rgb(0.0f);
     map.nearest(x, k, max_radius, scratch.neighbours);
@@ -42,12 +43,24 @@ Rgb surface_estimate(const PhotonMap& map, const Vec3& x, const Vec3& n, int k, 
     const float r = estimate_radius(scratch.neighbours, k, max_radius);
     Rgb sum(0.0f);
     for (const PhotonNeighbour& nb : scratch.neighbours) {
-        const Photon& p = map[nb.index];
-        if (!(glm::dot(n, p.wi) > 0.0f))
-            continue;
-        sum += brdf(p.wi) * p.power * filter_weight(filter, 2, std::sqrt(nb.distance2), r);
+        if (const std::optional<Rgb> c = contribution(map[nb.index]))
+            sum += *c * filter_weight(filter, dims, std::sqrt(nb.distance2), r);
     }
     return sum;
+}
+
+/// Reflected radiance L_r(x, wo) ≈ Σ f_r(x, wi_p, wo) ΔΦ_p w(d_p) (Jensen 2001, eq. 7.6) over the
+/// k nearest photons within max_radius of x that arrived on the side n faces (dot(n, wi_p) > 0).
+/// `brdf(wi)` returns f_r per steradian. With brdf ≡ 1 the result is the irradiance E (lux).
+template <class Brdf>
+Rgb surface_estimate(const PhotonMap& map, const Vec3& x, const Vec3& n, int k, float max_radius,
+                     PhotonFilter filter, PhotonQueryScratch& scratch, Brdf&& brdf) {
+    return kernel_estimate(map, x, 2, k, max_radius, filter, scratch,
+                           [&](const Photon& p) -> std::optional<Rgb> {
+                               if (!(glm::dot(n, p.wi) > 0.0f))
+                                   return std::nullopt;
+                               return brdf(p.wi) * p.power;
+                           });
 }
 
 /// In-scattered radiance per unit length at x toward wo, σ_s ∫ p(wo, wi) L(wi) dwi ≈
@@ -57,18 +70,9 @@ Rgb surface_estimate(const PhotonMap& map, const Vec3& x, const Vec3& n, int k, 
 template <class Phase>
 Rgb volume_estimate(const PhotonMap& map, const Vec3& x, int k, float max_radius,
                     PhotonFilter filter, PhotonQueryScratch& scratch, Phase&& phase) {
-    if (map.empty())
-        return Rgb(0.0f);
-    map.nearest(x, k, max_radius, scratch.neighbours);
-    if (scratch.neighbours.empty())
-        return Rgb(0.0f);
-    const float r = estimate_radius(scratch.neighbours, k, max_radius);
-    Rgb sum(0.0f);
-    for (const PhotonNeighbour& nb : scratch.neighbours) {
-        const Photon& p = map[nb.index];
-        sum += phase(p.wi) * p.power * filter_weight(filter, 3, std::sqrt(nb.distance2), r);
-    }
-    return sum;
+    return kernel_estimate(
+        map, x, 3, k, max_radius, filter, scratch,
+        [&](const Photon& p) -> std::optional<Rgb> { return phase(p.wi) * p.power; });
 }
 
 }  // namespace kasumi
