@@ -75,8 +75,14 @@ CASES = {
 }
 
 # POV-Ray quality sweeps: (label, settings) per kind of case.
-POV_MEDIA_SWEEP = [("samples %d jitter %g" % (s, j), {"samples": s, "jitter": j})
-                   for j, ss in ((0.0, (3, 5, 9, 17)), (1.0, (9, 33, 65))) for s in ss]
+POV_MEDIA_SETTINGS = "3:0,5:0,9:0,17:0,9:1,33:1,65:1"  # samples:jitter (--pov-media)
+
+
+def pov_media_sweep(spec):
+    return [("samples %d jitter %g" % (s, j), {"samples": s, "jitter": j})
+            for s, j in ((int(a), float(b)) for a, b in (x.split(":") for x in spec.split(",")))]
+
+
 POV_MEDIA_REFERENCE = {"samples": 129, "jitter": 1.0, "aa_threshold": 0.001}
 POV_AREA_SWEEP = [("area %dx%d adaptive %d" % (n, n, a), {"n": n, "adaptive": a})
                   for n, a in ((3, 0), (5, 0), (9, 0), (9, 1), (17, 1), (33, 1))]
@@ -86,8 +92,14 @@ POV_AREA_REFERENCE = {"n": 65, "adaptive": 0}
 # The fog's point lamp is sampled equiangularly with the unshadowed airlight as a control
 # variate (volume/in_scattering.cpp): step_m sets the shadow-ray samples per camera ray (one per
 # step), and 1 spp at half the step beats 2 spp (the pixel centre is fixed: film.jitter false).
-KASUMI_MEDIA_SWEEP = [("spp 1 step %g m" % st, 1, ["/render/volume/step_m=%g" % st])
-                      for st in (16, 8, 4, 2, 1, 0.5, 0.25)]
+KASUMI_MEDIA_STEPS = "16,8,4,2,1,0.5,0.25"  # --kasumi-steps
+
+
+def kasumi_media_sweep(spec):
+    return [("spp 1 step %g m" % st, 1, ["/render/volume/step_m=%g" % st])
+            for st in (float(x) for x in spec.split(","))]
+
+
 KASUMI_MEDIA_REFERENCE = (["/render/volume/step_m=0.1"], 16)
 # Light samples are stratified per shading point (Owen-scrambled Sobol), so one pixel sample
 # with N light samples beats N pixel samples with one each (the pixel centre is fixed anyway:
@@ -222,9 +234,9 @@ def run_case(args, case):
         scene = json.load(f)
     scene["film"]["width"], scene["film"]["height"] = args.res
     area = case == "soft"
-    pov_sweep = POV_AREA_SWEEP if area else POV_MEDIA_SWEEP
+    pov_sweep = POV_AREA_SWEEP if area else pov_media_sweep(args.pov_media)
     pov_ref_q = POV_AREA_REFERENCE if area else POV_MEDIA_REFERENCE
-    k_sweep = KASUMI_AREA_SWEEP if area else KASUMI_MEDIA_SWEEP
+    k_sweep = KASUMI_AREA_SWEEP if area else kasumi_media_sweep(args.kasumi_steps)
     k_ref_sets, k_ref_spp = KASUMI_AREA_REFERENCE if area else KASUMI_MEDIA_REFERENCE
 
     # Converged references (all threads; kept between runs of the script).
@@ -315,6 +327,10 @@ def main():
     ap.add_argument("--res", default="320x240",
                     help="image size WxH of both renderers (references are kept per --out: "
                     "use one --out per size)")
+    ap.add_argument("--pov-media", default=POV_MEDIA_SETTINGS,
+                    help="fog cases: POV-Ray media samples:jitter list")
+    ap.add_argument("--kasumi-steps", default=KASUMI_MEDIA_STEPS,
+                    help="fog cases: kasumi render.volume.step_m list (1 spp each)")
     args = ap.parse_args()
     args.res = tuple(int(v) for v in args.res.lower().split("x"))
     args.kasumi = os.path.join(args.build, "apps", "kasumi")
