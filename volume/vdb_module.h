@@ -22,13 +22,9 @@ struct VdbModuleApi {
                              const Vec3& world_offset, bool constant_tiles) = nullptr;
 };
 
-/// File name of the module, and the C symbol it exports: `const VdbModuleApi* NAME()`.
+/// File name of the module, and the C symbol it exports: `const VdbModuleApi* NAME()`. Found
+/// and loaded by core/module_loader.h (override: $KASUMI_VDB_MODULE).
 constexpr const char* kVdbModuleFile = "libkasumi_vdb.so";
 constexpr const char* kVdbModuleEntry = "kasumi_vdb_module_api";
-
-/// Where the module is looked for, in order: $KASUMI_VDB_MODULE if set (then only there); the
-/// executable's directory; <executable's directory>/../lib/kasumi (installed); the build tree
-/// it was built in (so tests and benchmarks find it without installing).
-std::vector<std::string> vdb_module_search_paths();
 
 }  // namespace kasumi

@@ -2,7 +2,8 @@
 # What a kasumi process loads: OpenVDB only through its module (libkasumi_vdb.so, dlopen'd on
 # the first .vdb read or write), so commands and scenes without grids never load it; a VDB scene
 # still renders through the module; a missing or foreign module is a clear runtime error (exit
-# 1) naming the paths tried, with no output written. And `--aovs none` writes exactly R, G, B, A.
+# 1) naming the paths tried, with no output written. OpenColorIO likewise (libkasumi_ocio.so,
+# only for the PNG preview). And `--aovs none` writes exactly R, G, B, A.
 # usage: startup_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
 kasumi="$1"
@@ -15,6 +16,7 @@ loaded_libs() { LD_DEBUG=files "$kasumi" "$@" 2>&1 >/dev/null | grep -o 'file=[^
 libs=$(loaded_libs --version)
 echo "$libs" | grep -q "file=" || fail "LD_DEBUG=files shows nothing: $libs"
 echo "$libs" | grep -q "openvdb\|kasumi_vdb" && fail "--version loads OpenVDB: $libs"
+echo "$libs" | grep -q "OpenColorIO\|kasumi_ocio" && fail "--version loads OpenColorIO: $libs"
 
 cat >"$work/fog.json" <<JSON
 {
@@ -26,6 +28,15 @@ cat >"$work/fog.json" <<JSON
 JSON
 libs=$(loaded_libs render "$work/fog.json" -o "$work/fog.exr" --no-preview -q)
 echo "$libs" | grep -q "openvdb\|kasumi_vdb" && fail "a scene without grids loads OpenVDB: $libs"
+echo "$libs" | grep -q "OpenColorIO\|kasumi_ocio" && fail "a render without preview loads OpenColorIO: $libs"
+# The PNG preview loads the OpenColorIO module; without it, exit 1 naming the path tried.
+libs=$(loaded_libs render "$work/fog.json" -o "$work/p/fog.exr" -q)
+echo "$libs" | grep -q "kasumi_ocio" || fail "the preview did not load the OpenColorIO module: $libs"
+[ -s "$work/p/fog.png" ] || fail "no preview written"
+KASUMI_OCIO_MODULE=/nonexistent/libkasumi_ocio.so expect_exit 1 \
+  "OpenColorIO module.*/nonexistent/libkasumi_ocio.so \(no such file\).*KASUMI_OCIO_MODULE" -- \
+  render "$work/fog.json" -o "$work/q/fog.exr" -q
+[ -e "$work/q/fog.png" ] && fail "a preview was written without the OpenColorIO module"
 # Without grids the module is not needed at all.
 KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 0 "" -- render "$work/fog.json" -o "$work/fog2.exr" --no-preview -q
 

@@ -1,0 +1,30 @@
+#pragma once
+/// Loading the project's own shared modules (volume/vdb_module.h: OpenVDB; core/ocio_module.h:
+/// OpenColorIO) with dlopen on first use, so a process that does not need a heavy library never
+/// pays for binding its symbols.
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+struct ModuleSpec {
+    const char* what;        ///< for messages, e.g. "OpenVDB module"
+    const char* needed_for;  ///< for messages, e.g. "to read or write .vdb files"
+    const char* file;        ///< file name, e.g. "libkasumi_vdb.so"
+    const char* env;         ///< variable that overrides the search, e.g. "KASUMI_VDB_MODULE"
+    const char* build_path;  ///< where the build tree wrote it ("" if unknown)
+    const char* entry;       ///< C symbol of `const T* entry()`; T starts with `int abi`
+    int abi;                 ///< the ABI version T::abi must equal
+};
+
+/// Where `spec.file` is looked for, in order: $env if set (then only there); the executable's
+/// directory; <executable's directory>/../lib/kasumi (installed); `spec.build_path` (so tests and
+/// benchmarks find it without installing).
+std::vector<std::string> module_search_paths(const ModuleSpec& spec);
+
+/// Loads the first module found (RTLD_NOW | RTLD_LOCAL; never closed) and returns what its entry
+/// returned. Throws Error (Runtime, exit code 1) naming every path tried and why it failed. Not
+/// cached: callers keep the result (see vdb_io.cpp).
+const void* load_module(const ModuleSpec& spec);
+
+}  // namespace kasumi
