@@ -57,6 +57,10 @@ struct Light {
     /// Adaptive shadows: when the first `shadow_probes` samples agree, the rest are skipped
     /// (lights/light_samples.h, ProbeRule; biased). 0: every point takes all `samples`.
     int shadow_probes = 0;
+    /// Sphere lights: shadow rays toward this many points on the light's outline decide first
+    /// whether a point is entirely lit or in umbra (then no samples are traced); biased, with a
+    /// stated bound (lights/light_samples.h, OutlineProbes). 0: off.
+    int outline_probes = 0;
     ShadowMapSettings shadow_map{};  ///< used when shadows == ShadowMode::Map
 };
 

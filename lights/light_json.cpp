@@ -207,6 +207,15 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
             n->fail("must be an integer in [0, samples = " + std::to_string(light.samples) + "]");
         light.shadow_probes = static_cast<int>(probes);
     }
+    if (const auto n = reader.optional("outline_probes")) {
+        if (!std::holds_alternative<SphereLight>(light.emitter))
+            n->fail("outline_probes applies to sphere lights; this is a " +
+                    light_type_name(light) + " light");
+        const int64_t probes = n->as_int();
+        if (probes != 0 && (probes < 4 || probes > 64))
+            n->fail("must be 0 (off) or an integer in [4, 64]");
+        light.outline_probes = static_cast<int>(probes);
+    }
 }
 
 }  // namespace

@@ -52,4 +52,19 @@ Vec2 owen_sobol_2d(uint32_t index, uint32_t seed0, uint32_t seed1) {
     return Vec2(to_unit_float(x), to_unit_float(y));
 }
 
+float StratifiedLightSamples::rotation() const {
+    // A third hash of the seeds (not a Sobol dimension): uniform over the scramble.
+    return to_unit_float(laine_karras_permutation(m_seed0 ^ 0x9e3779b9u, m_seed1));
+}
+
+PointLightSampler::PointLightSampler(const Light& light, const Vec3& p) : m_light(light), m_p(p) {
+    if (const auto* sphere = std::get_if<SphereLight>(&light.emitter))
+        m_cone.emplace(*sphere, p);
+}
+
+double outline_probe_bound(int k) {
+    const double alpha = 2.0 * kPiD / k;
+    return (alpha - std::sin(alpha)) / (2.0 * kPiD);
+}
+
 }  // namespace kasumi

@@ -47,34 +47,60 @@ Vec2 concentric_disc(Vec2 u) {
 
 }  // namespace
 
-IncidentLight sample_incident(const SphereLight& light, const Vec3& p, Vec2 u) {
-    IncidentLight in;
+SphereLightCone::SphereLightCone(const SphereLight& light, const Vec3& p)
+    : m_light(&light), m_p(p) {
     const Vec3 to_center = light.center - p;
-    const float d = glm::length(to_center);
-    if (!(d > light.radius))
-        return in;
-    const float sin2_sigma = (light.radius / d) * (light.radius / d);
-    const float cos_sigma = safe_sqrt(1.0f - sin2_sigma);
+    m_d = glm::length(to_center);
+    if (!(m_d > light.radius))
+        return;
+    m_valid = true;
+    m_sin2_sigma = (light.radius / m_d) * (light.radius / m_d);
+    const float cos_sigma = safe_sqrt(1.0f - m_sin2_sigma);
     // 1 − cos σ without cancellation for small, distant spheres.
-    const float one_minus_cos = sin2_sigma / (1.0f + cos_sigma);
+    m_one_minus_cos = m_sin2_sigma / (1.0f + cos_sigma);
+    m_axis = to_center / m_d;
+    m_frame = Frame(m_axis);
+}
+
+IncidentLight SphereLightCone::along(Vec2 disc, float rho2) const {
     // A point (x, y) uniform in the unit disc, ρ² = x² + y² uniform in [0, 1], becomes the
     // direction with 1 − cos θ = ρ² (1 − cos σ) (uniform in solid angle over the cone) at the
     // disc point's azimuth: sin θ / ρ = √((1 − cos σ)(2 − ρ² (1 − cos σ))).
-    const Vec2 disc = concentric_disc(u);
-    const float rho2 = std::min(1.0f, disc.x * disc.x + disc.y * disc.y);
-    const float one_minus_cos_theta = rho2 * one_minus_cos;
+    IncidentLight in;
+    const float one_minus_cos_theta = rho2 * m_one_minus_cos;
     const float cos_theta = 1.0f - one_minus_cos_theta;
-    const float sin_over_rho = safe_sqrt(one_minus_cos * (2.0f - one_minus_cos_theta));
-    const Vec3 axis = to_center / d;
-    const Frame frame(axis);
+    const float sin_over_rho = safe_sqrt(m_one_minus_cos * (2.0f - one_minus_cos_theta));
     in.wi = glm::normalize(
-        frame.to_world(Vec3(sin_over_rho * disc.x, sin_over_rho * disc.y, cos_theta)));
+        m_frame.to_world(Vec3(sin_over_rho * disc.x, sin_over_rho * disc.y, cos_theta)));
     // Nearest intersection of p + t wi with the sphere: t = d cos θ − √(R² − d² sin² θ).
     const float sin2_theta = std::max(0.0f, one_minus_cos_theta * (2.0f - one_minus_cos_theta));
-    in.distance = d * cos_theta - safe_sqrt(light.radius * light.radius - d * d * sin2_theta);
-    in.light_position = p + in.distance * in.wi;
-    in.irradiance = light.luminance * (kTwoPi * one_minus_cos);
+    in.distance =
+        m_d * cos_theta - safe_sqrt(m_light->radius * m_light->radius - m_d * m_d * sin2_theta);
+    in.light_position = m_p + in.distance * in.wi;
+    in.irradiance = m_light->luminance * (kTwoPi * m_one_minus_cos);
     return in;
+}
+
+IncidentLight SphereLightCone::sample(Vec2 u) const {
+    if (!m_valid)
+        return IncidentLight{};
+    const Vec2 disc = concentric_disc(u);
+    return along(disc, std::min(1.0f, disc.x * disc.x + disc.y * disc.y));
+}
+
+IncidentLight SphereLightCone::outline(float phi) const {
+    if (!m_valid)
+        return IncidentLight{};
+    return along(Vec2(std::cos(phi), std::sin(phi)), 1.0f);
+}
+
+bool SphereLightCone::above_plane(const Vec3& n) const {
+    const float c = glm::dot(n, m_axis);
+    return m_valid && c > 0.0f && c * c > m_sin2_sigma;
+}
+
+IncidentLight sample_incident(const SphereLight& light, const Vec3& p, Vec2 u) {
+    return SphereLightCone(light, p).sample(u);
 }
 
 float sample_pdf(const SphereLight& light, const Vec3& p, const Vec3& wi) {

@@ -26,6 +26,33 @@ Rgb unshadowed_irradiance(const SphereLight& light, const Vec3& p, const Vec3& n
 /// gives compact strata in the cone.
 IncidentLight sample_incident(const SphereLight& light, const Vec3& p, Vec2 u);
 
+/// The cone a sphere light subtends at a point p outside it, set up once for all of that
+/// point's samples: sample(u) is sample_incident(light, p, u), bit for bit (that function is
+/// this one), without redoing the distance, the cone's angle and its frame per sample.
+class SphereLightCone {
+  public:
+    SphereLightCone(const SphereLight& light, const Vec3& p);
+    /// False when p is inside (or on) the sphere: no light arrives.
+    bool valid() const { return m_valid; }
+    IncidentLight sample(Vec2 u) const;
+    /// The direction along the cone's boundary at azimuth phi (radians, about the cone's axis
+    /// in its frame), with the point where it grazes the sphere as the target. Not a sample:
+    /// an outline probe (docs/lights.md, "Outline probes").
+    IncidentLight outline(float phi) const;
+    /// True when the whole cone lies strictly above the plane through p of unit normal n
+    /// (angle of the axis to n plus σ below π/2: n · axis > sin σ).
+    bool above_plane(const Vec3& n) const;
+
+  private:
+    IncidentLight along(Vec2 disc, float rho2) const;
+
+    const SphereLight* m_light;
+    Vec3 m_p, m_axis{0.0f, 1.0f, 0.0f};
+    float m_d = 0.0f, m_sin2_sigma = 0.0f, m_one_minus_cos = 0.0f;
+    Frame m_frame{Vec3(0.0f, 1.0f, 0.0f)};
+    bool m_valid = false;
+};
+
 /// The density of sample_incident's directions per steradian: 1 / (2π (1 − cos σ)) inside the
 /// cone, 0 outside it (and inside the sphere).
 float sample_pdf(const SphereLight& light, const Vec3& p, const Vec3& wi);

@@ -61,6 +61,111 @@ class RenderPathEnvironment final : public PathEnvironment {
 
 }  // namespace
 
+namespace {
+
+/// One light's samples at one shading point, summed for the ratio estimator of
+/// shadow_sample_weight (docs/lights.md, "Shadows and the sampling API"):
+/// L_r ≈ E(p, n) · reflected / unshadowed.
+class LightSampleSums {
+  public:
+    LightSampleSums(const SceneRuntime& scene, const Light& light, const SurfaceHit& hit,
+                    const PhongMaterial& material, const Vec3& ng, const Vec3& ns, const Vec3& wo,
+                    KnownVisibility visible, Pcg32& rng, RenderCounters& counters)
+        : m_scene(scene),
+          m_light(light),
+          m_hit(hit),
+          m_material(material),
+          m_ng(ng),
+          m_ns(ns),
+          m_wo(wo),
+          m_visible(visible),
+          m_rng(rng),
+          m_counters(counters),
+          m_traced(scene.occlusion() != nullptr && light.shadows == ShadowMode::Ray),
+          // Every sample that casts a ray leaves on the +ng side (dot(ng, wi) > 0 is checked
+          // first), so one offset origin serves them all (offset_ray_origin picks the side
+          // from the sign of dot(ng, wi) alone).
+          m_origin(offset_ray_origin(hit, ng)) {}
+
+    Rgb reflected{0.0f};      ///< Σ_k f(wi_k) E_k cos θ_k T_k V_k
+    float unshadowed = 0.0f;  ///< Σ_k luminance(E_k) cos θ_k over the samples above the horizon
+
+    /// Adds one sample's terms to the sums; returns what became of it (for the probe rule).
+    LightSampleOutcome add(const IncidentLight& in) {
+        if (is_black(in.irradiance))
+            return LightSampleOutcome::Ignored;
+        const float cos_theta = glm::dot(m_ns, in.wi);
+        if (cos_theta <= 0.0f)
+            return LightSampleOutcome::Ignored;
+        unshadowed += luminance(in.irradiance) * cos_theta;
+        // Below the geometric horizon: the surface itself blocks the light.
+        if (glm::dot(m_ng, in.wi) <= 0.0f)
+            return LightSampleOutcome::Blocked;
+        if (m_visible == KnownVisibility::Shadowed) {
+            ++m_counters.shadow_rays_avoided;
+            return LightSampleOutcome::Blocked;
+        }
+        const Rgb t_media = media_transmittance(in);
+        if (is_black(t_media))
+            return LightSampleOutcome::Blocked;
+        if (m_visible == KnownVisibility::Lit)
+            ++m_counters.shadow_rays_avoided;
+        else if (m_traced && blocked(in))
+            return LightSampleOutcome::Blocked;
+        float visibility = 1.0f;
+        if (m_light.shadows == ShadowMode::Map || m_light.shadows == ShadowMode::ShadowVolume) {
+            visibility = m_scene.staged_visibility(light_index(), m_hit.position, m_ng, m_origin,
+                                                   in.light_position, m_wo);
+            if (!(visibility > 0.0f))
+                return LightSampleOutcome::Blocked;
+        }
+        reflected += phong_brdf(m_material, m_ns, m_wo, in.wi) * in.irradiance * cos_theta *
+                     t_media * visibility;
+        return LightSampleOutcome::Lit;
+    }
+
+    /// A shadow ray toward in.light_position (or along in.wi for lights at infinity) from the
+    /// +ng side of the point: true when a surface blocks it.
+    bool blocked(const IncidentLight& in) {
+        ++m_counters.surface_shadow_rays;
+        return in.distance >= kInfinity
+                   ? m_scene.occlusion()->occluded_direction(m_origin, in.wi)
+                   : m_scene.occlusion()->occluded(m_origin, in.light_position);
+    }
+
+  private:
+    /// Transmittance of the media between the point and the light (1 without media).
+    Rgb media_transmittance(const IncidentLight& in) {
+        if (!m_scene.plan().volume)
+            return Rgb(1.0f);
+        VolumeCounters vc;
+        const VolumeSettings& volume = m_scene.desc().render.volume;
+        const Rgb t = estimate_transmittance(
+            m_scene.media(),
+            Ray{m_origin, in.wi, 0.0f, in.distance >= kInfinity ? kInfinity : in.distance},
+            volume.estimator, march_step_m(m_scene.media(), volume), m_rng, vc);
+        m_counters.density_lookups += vc.density_lookups;
+        m_counters.transmittance_rays += vc.transmittance_estimates;
+        return t;
+    }
+    size_t light_index() const {
+        return static_cast<size_t>(&m_light - m_scene.desc().lights.data());
+    }
+
+    const SceneRuntime& m_scene;
+    const Light& m_light;
+    const SurfaceHit& m_hit;
+    const PhongMaterial& m_material;
+    const Vec3 m_ng, m_ns, m_wo;
+    const KnownVisibility m_visible;
+    Pcg32& m_rng;
+    RenderCounters& m_counters;
+    const bool m_traced;
+    const Vec3 m_origin;
+};
+
+}  // namespace
+
 Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& wo, Pcg32& rng,
                   RenderCounters& counters, const KnownVisibility* known) {
     const SceneDesc& desc = scene.desc();
@@ -84,82 +189,48 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
     if (!scene.plan().direct_light)
         return radiance;
     for (const Light& light : desc.lights) {
-        // Delta lights take one exact sample; extended lights `samples` points on the light, one
-        // shadow ray each, combined by the ratio estimator of shadow_sample_weight.
-        const int samples = is_delta(light) ? 1 : light.samples;
         const bool traced = scene.occlusion() != nullptr && light.shadows == ShadowMode::Ray;
-        const KnownVisibility visible = known != nullptr && traced
-                                            ? known[&light - desc.lights.data()]
-                                            : KnownVisibility::Unknown;
-        Rgb reflected(0.0f);
-        float unshadowed = 0.0f;
-        // Extended lights: stratified samples (Owen-scrambled Sobol, seeded from rng) and, with
-        // `shadow_probes`, the adaptive rule for ray-traced or unshadowed lights
-        // (lights/light_samples.h). Delta lights consume no random numbers.
-        const bool delta = is_delta(light);
-        const StratifiedLightSamples u_light =
-            delta ? StratifiedLightSamples(0u, 0u) : StratifiedLightSamples(rng);
-        ProbeRule probes(samples,
-                         traced || light.shadows == ShadowMode::None ? light.shadow_probes : 0);
-        for (int k = 0; k < samples; ++k) {
-            const IncidentLight in = delta ? incident_light(light, hit.position)
-                                           : sample_incident(light, hit.position, u_light[k]);
-            LightSampleOutcome outcome = LightSampleOutcome::Ignored;
-            [&] {
-                if (is_black(in.irradiance))
-                    return;
-                const float cos_theta = glm::dot(ns, in.wi);
-                if (cos_theta <= 0.0f)
-                    return;
-                unshadowed += luminance(in.irradiance) * cos_theta;
-                outcome = LightSampleOutcome::Blocked;
-                if (glm::dot(ng, in.wi) <= 0.0f)
-                    return;
-                if (visible == KnownVisibility::Shadowed) {
-                    ++counters.shadow_rays_avoided;
-                    return;
-                }
-                const bool to_infinity = in.distance >= kInfinity;
-                const Vec3 origin = offset_ray_origin(hit, in.wi);
-                Rgb t_media(1.0f);
-                if (scene.plan().volume) {
-                    VolumeCounters vc;
-                    const VolumeSettings& volume = desc.render.volume;
-                    t_media = estimate_transmittance(
-                        scene.media(),
-                        Ray{origin, in.wi, 0.0f, to_infinity ? kInfinity : in.distance},
-                        volume.estimator, march_step_m(scene.media(), volume), rng, vc);
-                    counters.density_lookups += vc.density_lookups;
-                    counters.transmittance_rays += vc.transmittance_estimates;
-                    if (is_black(t_media))
-                        return;
-                }
-                if (visible == KnownVisibility::Lit) {
-                    ++counters.shadow_rays_avoided;
-                } else if (traced) {
-                    ++counters.surface_shadow_rays;
-                    const bool blocked =
-                        to_infinity ? scene.occlusion()->occluded_direction(origin, in.wi)
-                                    : scene.occlusion()->occluded(origin, in.light_position);
-                    if (blocked)
-                        return;
-                }
-                float visibility = 1.0f;
-                if (light.shadows == ShadowMode::Map || light.shadows == ShadowMode::ShadowVolume) {
-                    visibility =
-                        scene.staged_visibility(static_cast<size_t>(&light - desc.lights.data()),
-                                                hit.position, ng, origin, in.light_position, wo);
-                    if (!(visibility > 0.0f))
-                        return;
-                }
-                outcome = LightSampleOutcome::Lit;
-                reflected += phong_brdf(material, ns, wo, in.wi) * in.irradiance * cos_theta *
-                             t_media * visibility;
-            }();
-            if (probes.record(k, outcome))
-                break;
+        KnownVisibility visible = known != nullptr && traced ? known[&light - desc.lights.data()]
+                                                             : KnownVisibility::Unknown;
+        // Delta lights: one exact sample, weight 1.
+        if (is_delta(light)) {
+            LightSampleSums sums(scene, light, hit, material, ng, ns, wo, visible, rng, counters);
+            sums.add(incident_light(light, hit.position));
+            radiance += sums.reflected;
+            continue;
         }
-        radiance += shadow_sample_weight(light, hit.position, ns, unshadowed) * reflected;
+        // Extended lights: `samples` stratified samples (Owen-scrambled Sobol, seeded from
+        // rng), one shadow ray each, and with `shadow_probes` the adaptive rule for ray-traced
+        // or unshadowed lights (lights/light_samples.h).
+        const StratifiedLightSamples u_light(rng);
+        const PointLightSampler sampler(light, hit.position);
+        if (traced && visible == KnownVisibility::Unknown && light.outline_probes > 0 &&
+            sampler.sphere_cone() != nullptr) {
+            // Outline probes (lights/light_samples.h, OutlineProbes; biased, bounded).
+            LightSampleSums probes(scene, light, hit, material, ng, ns, wo, visible, rng, counters);
+            const OutlineVerdict verdict = outline_verdict(
+                *sampler.sphere_cone(), ng, ns, light.outline_probes, u_light.rotation(),
+                [&](const IncidentLight& in) { return probes.blocked(in); });
+            if (verdict == OutlineVerdict::Shadowed)
+                continue;  // every sample would be blocked: no light
+            if (verdict == OutlineVerdict::Lit) {
+                // Entirely lit, Lambertian, no media: every sample is above both horizons, so
+                // the ratio estimator returns f E(p, n) exactly; skip the samples.
+                if (!(max_component(material.ks) > 0.0f) && !scene.plan().volume) {
+                    radiance +=
+                        material.kd * kInvPi * unshadowed_irradiance(light, hit.position, ns);
+                    continue;
+                }
+                visible = KnownVisibility::Lit;  // specular or media: samples without rays
+            }
+        }
+        LightSampleSums sums(scene, light, hit, material, ng, ns, wo, visible, rng, counters);
+        ProbeRule probes(light.samples,
+                         traced || light.shadows == ShadowMode::None ? light.shadow_probes : 0);
+        for (int k = 0; k < light.samples; ++k)
+            if (probes.record(k, sums.add(sampler.sample(u_light[k]))))
+                break;
+        radiance += shadow_sample_weight(light, hit.position, ns, sums.unshadowed) * sums.reflected;
     }
     return radiance;
 }
@@ -180,6 +251,7 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
     counters.transmittance_rays += vc.transmittance_estimates;
     counters.free_flights += vc.free_flights;
     counters.scattering_events += vc.scattering_events;
+    counters.bounded_marches += vc.bounded_marches;
     // Photon mapping adds the light scattered more than once from its volume map.
     if (const auto* photons = dynamic_cast<const PhotonGi*>(scene.gi()))
         v.radiance += photons->volume_radiance(scene, segment, rng);

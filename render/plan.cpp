@@ -90,6 +90,11 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
                            (light.shadow_probes > 0 && light.shadow_probes < light.samples
                                 ? ", stopping after " + std::to_string(light.shadow_probes) +
                                       " probes that agree (biased)"
+                                : "") +
+                           (light.outline_probes > 0
+                                ? ", " + std::to_string(light.outline_probes) +
+                                      " outline probes decide lit and umbra points (biased, "
+                                      "bounded)"
                                 : ""));
         if (light.shadows == ShadowMode::Map)
             maps.push_back(light.name + ": " + describe_shadow_maps(light));
