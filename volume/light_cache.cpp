@@ -84,20 +84,9 @@ std::optional<Rgb> LightTransmittanceCache::transmittance(const Vec3& p_world) c
 }
 
 std::optional<Rgb> LightTransmittanceCache::at_lattice(const Vec3& u) const {
-    const Vec3 f = glm::floor(u);
-    if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < m_dims.x - 1 && f.y < m_dims.y - 1 &&
-          f.z < m_dims.z - 1))
+    float d = 0.0f;
+    if (!lattice_integral(u, d))
         return std::nullopt;
-    const IVec3 i(f);
-    const Vec3 t = u - f;
-    const size_t dy = static_cast<size_t>(m_dims.x), dz = dy * static_cast<size_t>(m_dims.y);
-    const float* v = &m_d[index(i.x, i.y, i.z)];
-    const float x00 = v[0] + t.x * (v[1] - v[0]);
-    const float x10 = v[dy] + t.x * (v[dy + 1] - v[dy]);
-    const float x01 = v[dz] + t.x * (v[dz + 1] - v[dz]);
-    const float x11 = v[dz + dy] + t.x * (v[dz + dy + 1] - v[dz + dy]);
-    const float y0 = x00 + t.y * (x10 - x00), y1 = x01 + t.y * (x11 - x01);
-    const float d = y0 + t.z * (y1 - y0);
     if (m_grey)
         return Rgb(std::exp(-m_sigma_t_per_density.r * d));
     return exp_neg(m_sigma_t_per_density * d);

@@ -46,6 +46,19 @@ class LightTransmittanceCache {
             return Rgb(1.0f);
         return at_lattice(line.u0 + t * line.du);
     }
+    /// The density integral toward the light (density · metres) at the point of `line` at t,
+    /// trilinear between lattice points, into `d`; false (d untouched) outside the lattice.
+    /// transmittance(line, t) = exp(-sigma_t_per_density() · d): a caller that multiplies it
+    /// with another exponential (the marched camera transmittance) adds the exponents instead.
+    bool density_integral(const Line& line, float t, float& d) const {
+        if (m_d.empty()) {
+            d = 0.0f;
+            return true;
+        }
+        return lattice_integral(line.u0 + t * line.du, d);
+    }
+    /// Extinction per unit density of the cached medium (1/m).
+    const Rgb& sigma_t_per_density() const { return m_sigma_t_per_density; }
     /// Density integral toward the light (density · metres) at lattice point (i, j, k).
     float density_integral(int i, int j, int k) const { return m_d[index(i, j, k)]; }
     IVec3 dims() const { return m_dims; }
@@ -56,6 +69,23 @@ class LightTransmittanceCache {
 
   private:
     std::optional<Rgb> at_lattice(const Vec3& u) const;
+    bool lattice_integral(const Vec3& u, float& d) const {
+        const Vec3 f = glm::floor(u);
+        if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < m_dims.x - 1 &&
+              f.y < m_dims.y - 1 && f.z < m_dims.z - 1))
+            return false;
+        const IVec3 i(f);
+        const Vec3 w = u - f;
+        const size_t dy = static_cast<size_t>(m_dims.x), dz = dy * static_cast<size_t>(m_dims.y);
+        const float* v = &m_d[index(i.x, i.y, i.z)];
+        const float x00 = v[0] + w.x * (v[1] - v[0]);
+        const float x10 = v[dy] + w.x * (v[dy + 1] - v[dy]);
+        const float x01 = v[dz] + w.x * (v[dz + 1] - v[dz]);
+        const float x11 = v[dz + dy] + w.x * (v[dz + dy + 1] - v[dz + dy]);
+        const float y0 = x00 + w.y * (x10 - x00), y1 = x01 + w.y * (x11 - x01);
+        d = y0 + w.z * (y1 - y0);
+        return true;
+    }
     size_t index(int i, int j, int k) const {
         return static_cast<size_t>(i) +
                static_cast<size_t>(m_dims.x) *

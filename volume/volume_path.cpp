@@ -4,6 +4,7 @@
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"
 
+#include <cmath>
 #include <optional>
 
 namespace kasumi {
@@ -66,9 +67,150 @@ struct MarchLight {
     LightTransmittanceCache::Line line;
 };
 
+/// The camera optical depth at which the marched single scattering stops (kTailTransmittance).
+const float kTailDepth = -std::log(kTailTransmittance);
+
+/// march_single for the common cloud case: the set is one grid medium with grey extinction and
+/// no emission, and every light is directional with a cached transmittance. Same estimator,
+/// nodes and weights as march_walk (jittered grid, abutting bricks walked as one run with nodes
+/// at the run's ends, trapezoid tau), but walked lazily along the grid's brick DDA (each lookup
+/// reads the brick the walk names; nothing past the tail cut-off is walked, no segment list),
+/// and with one exp per node and light: T_camera T_light = exp(-(tau + sigma_t D)), D the
+/// cache's density integral toward the light. Returns false, having drawn no random number and
+/// touched nothing, when the case does not apply.
+bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
+                       const OcclusionQuery* occlusion, const Ray& ray,
+                       const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters,
+                       VolumeResult& result) {
+    const MediumSet::FastMedium* g = media.single_grid();
+    if (g == nullptr || !settings.light_cache || !media.grey_extinction() || media.emits() ||
+        lights.empty() || lights.size() > MediumSet::kMaxCachedLights)
+        return false;
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (!std::holds_alternative<DirectionalLight>(lights[i].emitter) ||
+            media.light_cache(i, lights[i]) == nullptr)
+            return false;
+    result = VolumeResult{};
+    const float sigma_t = g->sigma_t.r;  // per unit density, equal channels (grey)
+    if (g->grid->empty() || !(sigma_t > 0.0f))
+        return true;
+    const auto span = g->bounds_world.clip(ray);
+    if (!span)
+        return true;
+    // Per light and ray: f = sigma_s p(mu) per unit density, and f E (directional: the same at
+    // every node; sample_incident draws no random number for a delta light).
+    struct GridLight {
+        const Light* light = nullptr;
+        IncidentLight incident;
+        Rgb f{0.0f};
+        Rgb weight{0.0f};
+        const LightTransmittanceCache* cache = nullptr;
+        LightTransmittanceCache::Line line;
+        bool blockable = false;
+    };
+    GridLight grid_lights[MediumSet::kMaxCachedLights];
+    size_t n_lights = 0;
+    const Vec3 wo = -ray.direction;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        GridLight& m = grid_lights[n_lights];
+        m.incident = sample_incident(lights[i], ray.origin, rng);
+        if (is_black(m.incident.irradiance))
+            continue;
+        m.f = g->sigma_s * media.phase_value(0, scattering_cosine(wo, m.incident.wi));
+        if (is_black(m.f))
+            continue;  // the general path's light_term returns 0 before any shadow test
+        m.light = &lights[i];
+        m.weight = m.f * m.incident.irradiance;
+        m.cache = media.light_cache(i, lights[i]);
+        m.line = m.cache->line(ray.origin, ray.direction);
+        m.blockable = occlusion != nullptr && lights[i].shadows != ShadowMode::None;
+        ++n_lights;
+    }
+    // The same expressions as RayMediaQuery's, so both see the same index-space ray.
+    const Vec3 o(g->world_to_index * Vec4(ray.origin, 1.0f));
+    const Vec3 d(g->world_to_index * Vec4(ray.direction, 0.0f));
+    const float h = march_step_m(media, settings);
+    float u = 0.0f;
+    bool started = false, in_run = false, stopped = false;
+    float run_end = 0.0f, t_prev = 0.0f, rho_prev = 0.0f;
+    BrickRef last;
+    double k = 0.0;
+    double depth = 0.0;  // integral of density along the ray so far (density · metres)
+    uint64_t lookups = 0, steps = 0;
+    const auto close_run = [&] {
+        const float rho_end = DensityGrid::density_in(last, o + run_end * d);
+        ++lookups;
+        depth +=
+            0.5 * static_cast<double>(run_end - t_prev) * static_cast<double>(rho_prev + rho_end);
+    };
+    g->grid->walk(o, d, span->first, span->second, [&](const BrickSpan& b, const BrickRef& brick) {
+        if (!started) {
+            u = rng.next_float();  // drawn where the general path draws it: media ahead
+            started = true;
+        }
+        if (!in_run || b.t0 != run_end) {
+            if (in_run)
+                close_run();
+            in_run = true;
+            t_prev = b.t0;
+            rho_prev = DensityGrid::density_in(brick, o + b.t0 * d);
+            ++lookups;
+            k = std::max(std::ceil(static_cast<double>(b.t0 - ray.t_min) / h - u), 0.0);
+        }
+        run_end = b.t1;
+        last = brick;
+        for (;; k += 1.0) {
+            const float t = ray.t_min + static_cast<float>((u + k) * h);
+            if (!(t < b.t1))
+                break;
+            if (!(t > t_prev))
+                continue;
+            const float rho = DensityGrid::density_in(brick, o + t * d);
+            ++lookups;
+            depth += 0.5 * static_cast<double>(t - t_prev) * static_cast<double>(rho_prev + rho);
+            t_prev = t;
+            rho_prev = rho;
+            const float tau = sigma_t * static_cast<float>(depth);
+            if (tau > kTailDepth) {
+                stopped = true;
+                return false;
+            }
+            if (!(rho > 0.0f) || n_lights == 0)
+                continue;
+            ++steps;
+            for (size_t i = 0; i < n_lights; ++i) {
+                const GridLight& m = grid_lights[i];
+                if (m.blockable && blocked(occlusion, ray.at(t), m.incident, counters))
+                    continue;
+                float integral = 0.0f;
+                if (m.cache->density_integral(m.line, t, integral)) {
+                    result.radiance += (h * rho * std::exp(-(tau + sigma_t * integral))) * m.weight;
+                } else {
+                    // Off the cached lattice: a shadow ray through the estimator, as
+                    // light_term does (the occlusion test is done above).
+                    result.radiance +=
+                        (h * std::exp(-tau)) * light_term(media, *m.light, nullptr, ray.at(t),
+                                                          m.incident, rho * m.f, std::nullopt,
+                                                          settings, h, rng, counters);
+                }
+            }
+        }
+        return true;
+    });
+    if (in_run && !stopped)
+        close_run();
+    counters.density_lookups += lookups;
+    counters.steps += steps;
+    result.transmittance = Rgb(std::exp(-sigma_t * static_cast<float>(depth)));
+    return true;
+}
+
 VolumeResult march_single(const MediumSet& media, const std::vector<Light>& lights,
                           const OcclusionQuery* occlusion, const Ray& ray,
                           const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters) {
+    VolumeResult fast;
+    if (march_single_grid(media, lights, occlusion, ray, settings, rng, counters, fast))
+        return fast;
     thread_local std::vector<MajorantSegment> segments;
     media.majorants(ray, segments);
     VolumeResult result;
