@@ -104,11 +104,14 @@ KASUMI_MEDIA_REFERENCE = (["/render/volume/step_m=0.1"], 16)
 # Light samples are stratified per shading point (Owen-scrambled Sobol), so one pixel sample
 # with N light samples beats N pixel samples with one each (the pixel centre is fixed anyway:
 # film.jitter false). "probes P": shadow_probes, the adaptive rule (biased; its bias is in the
-# measured error, the reference has no probes).
-KASUMI_AREA_SWEEP = [("spp 1 samples %d probes %d" % (n, p), 1,
-                      ["/lights/0/samples=%d" % n, "/lights/0/shadow_probes=%d" % p])
-                     for n, p in ((4, 0), (16, 0), (64, 0), (256, 0), (64, 16), (256, 16),
-                                  (256, 32), (1024, 32), (1024, 64))]
+# measured error, the reference has no probes). "outline K": outline_probes, K shadow rays to
+# the light's outline decide lit and umbra points alone (biased, bounded; docs/lights.md).
+KASUMI_AREA_SWEEP = [("spp 1 samples %d probes %d" % (n, p) + (" outline %d" % o if o else ""), 1,
+                      ["/lights/0/samples=%d" % n, "/lights/0/shadow_probes=%d" % p,
+                       "/lights/0/outline_probes=%d" % o])
+                     for n, p, o in ((4, 0, 0), (16, 0, 0), (64, 0, 0), (64, 16, 0),
+                                     (1024, 64, 0), (16, 0, 6), (16, 0, 8), (64, 0, 8),
+                                     (256, 0, 8), (256, 0, 12), (1024, 0, 16))]
 KASUMI_AREA_REFERENCE = (["/lights/0/samples=512"], 8)
 
 
