@@ -1,5 +1,7 @@
 #include "surface/patch_faces.h"
 
+#include "surface/box_faces.h"
+
 namespace kasumi {
 
 namespace {
@@ -29,26 +31,8 @@ std::vector<ShapeFace> shape_faces(const Shape& shape, uint32_t shape_index) {
     if (const auto* quad = std::get_if<QuadShape>(&shape.geometry)) {
         faces.push_back(make_face(quad->vertices.data(), 4, shape_index, material));
     } else if (const auto* box = std::get_if<BoxShape>(&shape.geometry)) {
-        // The same corners and winding as surface_scene.cpp's make_geometry(BoxShape).
-        for (int axis = 0; axis < 3; ++axis) {
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            for (int side = 0; side < 2; ++side) {
-                const float w = side ? box->max[axis] : box->min[axis];
-                Vec3 c[4];
-                const float uv[4][2] = {{box->min[u], box->min[v]},
-                                        {box->max[u], box->min[v]},
-                                        {box->max[u], box->max[v]},
-                                        {box->min[u], box->max[v]}};
-                for (int k = 0; k < 4; ++k) {
-                    c[k][axis] = w;
-                    c[k][u] = uv[k][0];
-                    c[k][v] = uv[k][1];
-                }
-                if (!side)
-                    std::swap(c[1], c[3]);
-                faces.push_back(make_face(c, 4, shape_index, material));
-            }
-        }
+        for (const std::array<Vec3, 4>& c : box_faces(*box))
+            faces.push_back(make_face(c.data(), 4, shape_index, material));
     } else if (const auto* mesh = std::get_if<MeshShape>(&shape.geometry)) {
         const TriangleMesh& m = mesh->mesh;
         for (const auto& t : m.triangles) {

@@ -1,5 +1,7 @@
 #include "surface/shadow_volume.h"
 
+#include "surface/box_faces.h"
+
 #include <map>
 #include <tuple>
 
@@ -40,30 +42,11 @@ class Welder {
     std::map<std::tuple<float, float, float>, uint32_t> m_index;
 };
 
-/// Boxes wound outward as in surface_scene.cpp: face at max of `axis` counter-clockwise toward
-/// +axis in the cyclic (axis, u, v) order, the face at min the other way round.
 WeldedMesh box_mesh(const BoxShape& b) {
     WeldedMesh mesh;
     Welder weld(mesh);
-    for (int axis = 0; axis < 3; ++axis) {
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        for (int side = 0; side < 2; ++side) {
-            Vec3 c[4];
-            const float uv[4][2] = {{b.min[u], b.min[v]},
-                                    {b.max[u], b.min[v]},
-                                    {b.max[u], b.max[v]},
-                                    {b.min[u], b.max[v]}};
-            for (int k = 0; k < 4; ++k) {
-                c[k][axis] = side ? b.max[axis] : b.min[axis];
-                c[k][u] = uv[k][0];
-                c[k][v] = uv[k][1];
-            }
-            if (side)
-                weld.quad(c[0], c[1], c[2], c[3]);
-            else
-                weld.quad(c[0], c[3], c[2], c[1]);
-        }
-    }
+    for (const std::array<Vec3, 4>& c : box_faces(b))
+        weld.quad(c[0], c[1], c[2], c[3]);
     return mesh;
 }
 
