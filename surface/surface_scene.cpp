@@ -90,6 +90,21 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
     out->upper_z = up(g->center.z + g->radius);
 }
 
+/// Ray i of an Embree packet of N rays, in double precision; [t_near, t_far] is its current
+/// interval.
+struct PacketRay {
+    DVec3 origin;
+    DVec3 direction;
+    double t_near = 0.0;
+    double t_far = 0.0;
+};
+
+PacketRay packet_ray(RTCRayN* ray, unsigned N, unsigned i) {
+    return {DVec3(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)),
+            DVec3(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)),
+            RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i)};
+}
+
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
     const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
@@ -97,16 +112,12 @@ void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i])
             continue;
-        const DVec3 origin(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
-                           RTCRayN_org_z(ray, args->N, i));
-        const DVec3 direction(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
-                              RTCRayN_dir_z(ray, args->N, i));
+        const PacketRay r = packet_ray(ray, args->N, i);
         const std::optional<double> t =
-            intersect_sphere(g->center, g->radius, origin, direction,
-                             RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i));
+            intersect_sphere(g->center, g->radius, r.origin, r.direction, r.t_near, r.t_far);
         if (!t)
             continue;
-        const DVec3 n = origin + *t * direction - g->center;
+        const DVec3 n = r.origin + *t * r.direction - g->center;
         RTCRayN_tfar(ray, args->N, i) = static_cast<float>(*t);
         RTCHitN_Ng_x(hit, args->N, i) = static_cast<float>(n.x);
         RTCHitN_Ng_y(hit, args->N, i) = static_cast<float>(n.y);
@@ -125,12 +136,8 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i])
             continue;
-        const DVec3 origin(RTCRayN_org_x(ray, args->N, i), RTCRayN_org_y(ray, args->N, i),
-                           RTCRayN_org_z(ray, args->N, i));
-        const DVec3 direction(RTCRayN_dir_x(ray, args->N, i), RTCRayN_dir_y(ray, args->N, i),
-                              RTCRayN_dir_z(ray, args->N, i));
-        if (intersect_sphere(g->center, g->radius, origin, direction,
-                             RTCRayN_tnear(ray, args->N, i), RTCRayN_tfar(ray, args->N, i)))
+        const PacketRay r = packet_ray(ray, args->N, i);
+        if (intersect_sphere(g->center, g->radius, r.origin, r.direction, r.t_near, r.t_far))
             RTCRayN_tfar(ray, args->N, i) = -std::numeric_limits<float>::infinity();
     }
 }
