@@ -4,6 +4,7 @@
 #include "core/csv_table.h"
 #include "core/error.h"
 #include "core/reference_spectra.h"
+#include "tests/input_error.h"
 
 #include <gtest/gtest.h>
 
@@ -11,18 +12,6 @@
 
 namespace kasumi {
 namespace {
-
-/// The message of the input error `f` throws ("" if none).
-template <typename F>
-std::string input_error(F f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        EXPECT_EQ(e.exit_code(), 3);
-        return e.what();
-    }
-    return "";
-}
 
 TEST(CsvTable, CommentsBlankLinesAndHeader) {
     const WavelengthTable t = parse_wavelength_csv(

@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "core/reference_spectra.h"
 #include "core/spectrum.h"
+#include "tests/input_error.h"
 #include "volume/atmosphere_json.h"
 #include "volume/sky_reference.h"
 #include "volume/sky_scene.h"
@@ -160,17 +161,6 @@ Atmosphere parse(const std::string& json, const std::vector<double>& nm,
     static Json doc;  // nodes refer to it while parsing
     doc = parse_json_text(json, file);
     return parse_atmosphere(JsonNode(doc, file), nm, kRgbNm);
-}
-
-template <typename F>
-std::string input_error(F f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        EXPECT_EQ(e.exit_code(), 3);
-        return e.what();
-    }
-    return "";
 }
 
 TEST(OzoneAuto, ZenithOpticalDepthIsCrossSectionTimesColumn) {
