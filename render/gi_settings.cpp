@@ -1,19 +1,10 @@
 #include "render/gi_settings.h"
 
+#include "core/json_int.h"
+
 #include <filesystem>
 
 namespace kasumi {
-
-namespace {
-
-int int_in(const JsonNode& node, int64_t lo, int64_t hi) {
-    const int64_t v = node.as_int();
-    if (v < lo || v > hi)
-        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<int>(v);
-}
-
-}  // namespace
 
 const char* gi_mode_name(GiMode mode) {
     switch (mode) {
@@ -42,9 +33,9 @@ PathSettings parse_path_settings(const JsonNode& node) {
     JsonObjectReader reader(node);
     PathSettings path;
     if (auto v = reader.optional("max_depth"))
-        path.max_depth = int_in(*v, 0, 1024);
+        path.max_depth = parse_int_in(*v, 0, 1024);
     if (auto v = reader.optional("rr_depth"))
-        path.rr_depth = int_in(*v, 1, 1024);
+        path.rr_depth = parse_int_in(*v, 1, 1024);
     reader.finish();
     return path;
 }
@@ -55,7 +46,7 @@ RadiositySettings parse_radiosity_settings(const JsonNode& node) {
     if (auto v = reader.optional("patch_size_m"))
         r.patch_size_m = v->positive();
     if (auto v = reader.optional("max_subdivision"))
-        r.max_subdivision = int_in(*v, 0, 8);
+        r.max_subdivision = parse_int_in(*v, 0, 8);
     if (auto v = reader.optional("refine_threshold"))
         r.refine_threshold = v->positive();
     if (auto v = reader.optional("solver")) {
@@ -71,9 +62,9 @@ RadiositySettings parse_radiosity_settings(const JsonNode& node) {
     if (auto v = reader.optional("tolerance"))
         r.tolerance = v->in_open(0.0f, 1.0f);
     if (auto v = reader.optional("max_iterations"))
-        r.max_iterations = int_in(*v, 1, 100000000);
+        r.max_iterations = parse_int_in(*v, 1, 100000000);
     if (auto v = reader.optional("form_factor_samples"))
-        r.form_factor_samples = int_in(*v, 1, 256);
+        r.form_factor_samples = parse_int_in(*v, 1, 256);
     if (auto v = reader.optional("cache")) {
         std::filesystem::path path(v->as_string());
         if (path.empty())

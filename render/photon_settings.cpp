@@ -1,5 +1,7 @@
 #include "render/photon_settings.h"
 
+#include "core/json_int.h"
+
 #include <string>
 
 namespace kasumi {
@@ -7,17 +9,7 @@ namespace kasumi {
 namespace {
 
 uint64_t parse_count(const JsonNode& node) {
-    const int64_t v = node.as_int();
-    if (v < 0 || v > 100000000)
-        node.fail("must be an integer in [0, 100000000]");
-    return static_cast<uint64_t>(v);
-}
-
-int parse_int(const JsonNode& node, int64_t lo, int64_t hi) {
-    const int64_t v = node.as_int();
-    if (v < lo || v > hi)
-        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<int>(v);
+    return static_cast<uint64_t>(parse_int_in(node, 0, 100000000));
 }
 
 }  // namespace
@@ -44,17 +36,17 @@ PhotonSettings parse_photon_settings(const JsonNode& node) {
     if (auto v = reader.optional("volume_count"))
         s.volume_count = parse_count(*v);
     if (auto v = reader.optional("k"))
-        s.k = parse_int(*v, 1, 10000);
+        s.k = parse_int_in(*v, 1, 10000);
     if (auto v = reader.optional("max_radius_m"))
         s.max_radius_m = v->positive();
     if (auto v = reader.optional("final_gather_samples"))
-        s.final_gather_samples = parse_int(*v, 0, 4096);
+        s.final_gather_samples = parse_int_in(*v, 0, 4096);
     if (auto v = reader.optional("max_bounces"))
-        s.max_bounces = parse_int(*v, 1, 1024);
+        s.max_bounces = parse_int_in(*v, 1, 1024);
     if (auto v = reader.optional("shadow_count"))
         s.shadow_count = parse_count(*v);
     if (auto v = reader.optional("shadow_k"))
-        s.shadow_k = parse_int(*v, 1, 1000);
+        s.shadow_k = parse_int_in(*v, 1, 1000);
     if (auto v = reader.optional("filter")) {
         const std::string name = v->as_string();
         if (name == "box") {
