@@ -41,8 +41,9 @@ void parse_output_format(const std::string& aovs_text, const std::string& compre
 void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
                           const OutputPaths& paths, const StageTimes& times) {
     const SceneDesc& desc = scene.desc();
-    Image image;
-    result.film.to_image(image, paths.aovs);
+    // The EXR is written straight from the film's planes; `image` carries size and metadata,
+    // and R, G, B only if a preview is wanted.
+    Image image(result.film.width(), result.film.height());
     const RenderCounters& c = result.counters;
     image.metadata = {
         {"version", version_string()},
@@ -70,8 +71,16 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
     for (auto& kv : stage_metadata(times, scene.plan()))
         image.metadata.push_back(std::move(kv));
     make_parent_dirs(paths.exr);
-    write_exr(image, paths.exr, paths.compression);
+    std::vector<ExrChannelView> channels;
+    for (const FilmPlane& plane : result.film.planes(paths.aovs))
+        channels.push_back({plane.name, plane.data});
+    write_exr(image, channels, paths.exr, paths.compression);
     if (!paths.preview.empty()) {
+        const size_t pixels = static_cast<size_t>(image.width) * image.height;
+        for (size_t i = 0; i < 3; ++i) {  // R, G, B
+            const float* from = channels[i].data;
+            image.channels.push_back({channels[i].name, std::vector<float>(from, from + pixels)});
+        }
         make_parent_dirs(paths.preview);
         PreviewSettings preview;
         preview.config_path = default_ocio_config_path();

@@ -8,6 +8,7 @@
 #include "core/image.h"
 
 #include <string>
+#include <vector>
 
 namespace kasumi {
 
@@ -28,6 +29,18 @@ bool parse_exr_compression(const std::string& text, ExrCompression& compression)
 /// `path` if it cannot be written (no file is left behind).
 void write_exr(const Image& image, const std::string& path,
                ExrCompression compression = ExrCompression::Zip);
+
+/// A channel plane to write, borrowed: width * height floats, top row first.
+struct ExrChannelView {
+    std::string name;
+    const float* data = nullptr;
+};
+
+/// write_exr from borrowed planes (no copy of the pixels: the renderer writes its film's planes
+/// directly); `header` gives size, metadata and chromaticities, its own channels are ignored.
+/// Same checks, errors and atomicity as write_exr(Image).
+void write_exr(const Image& header, const std::vector<ExrChannelView>& channels,
+               const std::string& path, ExrCompression compression = ExrCompression::Zip);
 
 /// Reads every channel of `path` as float (top row first) and its string attributes: those named
 /// "kasumi/<key>" become metadata <key>, other string attributes keep their full name. Missing

@@ -155,37 +155,40 @@ Image Film::to_image() const {
     return image;
 }
 
-void Film::to_image(Image& image, uint32_t aovs) const {
+std::vector<FilmPlane> Film::planes(uint32_t aovs) const {
     KASUMI_CHECK((aovs & ~m_aovs) == 0);  // only stored AOVs can be read out
-    // Channel names and source planes in output order: R, G, B, A, then the chosen AOVs.
-    const char* rgb[3] = {"R", "G", "B"};
-    std::vector<std::string> names = {"R", "G", "B", "A"};
-    std::vector<int> source = {0, 1, 2, 3};
-    names.reserve(static_cast<size_t>(channel_count(aovs)));
+    const char* rgba[4] = {"R", "G", "B", "A"};
+    std::vector<FilmPlane> planes;
+    planes.reserve(static_cast<size_t>(channel_count(aovs)));
+    for (int c = 0; c < 4; ++c)
+        planes.push_back({rgba[c], plane(c)});
     for (int k = 0; k < 5; ++k) {
         if ((aovs & kAovLayout[k].bit) == 0)
             continue;
         for (int c = 0; c < kAovLayout[k].channels; ++c) {
-            names.push_back(std::string(kAovLayout[k].prefix) +
-                            (kAovLayout[k].channels == 1 ? "Z" : rgb[c]));
-            source.push_back(m_first[k] + c);
+            planes.push_back(
+                {std::string(kAovLayout[k].prefix) + (kAovLayout[k].channels == 1 ? "Z" : rgba[c]),
+                 plane(m_first[k] + c)});
         }
     }
+    return planes;
+}
 
+void Film::to_image(Image& image, uint32_t aovs) const {
+    const std::vector<FilmPlane> from = planes(aovs);
     bool reusable =
-        image.width == m_width && image.height == m_height && image.channels.size() == names.size();
-    for (size_t i = 0; reusable && i < names.size(); ++i)
-        reusable = image.channels[i].name == names[i] && image.channels[i].data.size() == m_pixels;
+        image.width == m_width && image.height == m_height && image.channels.size() == from.size();
+    for (size_t i = 0; reusable && i < from.size(); ++i)
+        reusable =
+            image.channels[i].name == from[i].name && image.channels[i].data.size() == m_pixels;
     if (!reusable) {
         image = Image(m_width, m_height);
-        image.channels.resize(names.size());
-        for (size_t i = 0; i < names.size(); ++i)
-            image.channels[i].name = names[i];
+        image.channels.resize(from.size());
+        for (size_t i = 0; i < from.size(); ++i)
+            image.channels[i].name = from[i].name;
     }
-    for (size_t i = 0; i < names.size(); ++i) {
-        const float* from = plane(source[i]);
-        image.channels[i].data.assign(from, from + m_pixels);  // no reallocation when reused
-    }
+    for (size_t i = 0; i < from.size(); ++i)  // no reallocation when reused
+        image.channels[i].data.assign(from[i].data, from[i].data + m_pixels);
     image.metadata.clear();
     image.chromaticities = Chromaticities{};
 }

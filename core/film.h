@@ -5,6 +5,7 @@
 #include "core/image.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace kasumi {
@@ -18,6 +19,12 @@ struct PixelSample {
     Rgb albedo{0.0f};         ///< diffuse reflectance of the first surface, 0 if none
     float depth = 0.0f;       ///< camera-space depth of the first surface, metres; 0 if none
     bool hit = false;         ///< the camera ray reached a surface
+};
+
+/// One channel plane of a film, borrowed: width * height floats, top row first.
+struct FilmPlane {
+    std::string name;  ///< EXR channel name: "R", "A", "albedo.R", "depth.Z", ...
+    const float* data = nullptr;
 };
 
 /// Which AOVs an image of the film carries besides the beauty R, G, B, A (a bit set).
@@ -69,6 +76,10 @@ class Film {
     /// channels, in the order above. One copy per plane. Metadata is cleared.
     void to_image(Image& image, uint32_t aovs) const;
     void to_image(Image& image) const { to_image(image, m_aovs); }
+
+    /// The planes to_image(image, aovs) would copy, in its channel order, without copying
+    /// (valid while the film lives): what the EXR writer reads directly.
+    std::vector<FilmPlane> planes(uint32_t aovs) const;
 
   private:
     /// Storage of destroyed films, kept for reuse (guarded by a mutex in film.cpp).
