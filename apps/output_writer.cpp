@@ -63,6 +63,7 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
         {"stats/transmittance_rays", std::to_string(c.transmittance_rays)},
         {"stats/free_flights", std::to_string(c.free_flights)},
         {"stats/scattering_events", std::to_string(c.scattering_events)},
+        {"stats/bounded_marches", std::to_string(c.bounded_marches)},
         {"stats/threads", std::to_string(result.threads)},
         {"stats/density_lookups_per_s_per_core",
          std::to_string(
@@ -114,6 +115,8 @@ std::string format_stats(const SceneRuntime& scene, const RenderResult& result,
     out << "  transmittance rays  " << c.transmittance_rays << "\n";
     out << "  free flights        " << c.free_flights << "\n";
     out << "  scattering events   " << c.scattering_events << "\n";
+    out << "  bounded marches     " << c.bounded_marches
+        << " (step lengthened to 1/65536 of the way)\n";
     const RenderRates r = render_rates(c, result.seconds, result.threads);
     out << "  threads             " << result.threads << "\n";
     out << "  lookups/s/core      " << r.density_lookups_per_s_per_core << "\n";

@@ -180,10 +180,11 @@ Rgb volume_map_radiance(const PhotonRenderContext& c, const Ray& segment, Pcg32&
     const MediumSet& media = c.scene.media();
     thread_local std::vector<MajorantSegment> segments;
     media.majorants(segment, segments);
-    const float h = c.scene.desc().render.volume.step_m;
+    VolumeCounters vc;
+    const float h =
+        bounded_march_step(c.scene.desc().render.volume.step_m, march_extent(segments), vc);
     const Vec3 wo = -segment.direction;
     Rgb radiance(0.0f);
-    VolumeCounters vc;
     march_walk(media, segment, h, rng.next_float(), segments, false, vc,
                [&](float, const Vec3& x, const PointCoefficients& k, uint32_t mask,
                    const glm::dvec3& depth) {

@@ -23,6 +23,8 @@ struct RenderCounters {
     uint64_t transmittance_rays = 0;
     uint64_t free_flights = 0;       ///< free-flight distance samples (tracking integrators)
     uint64_t scattering_events = 0;  ///< real scattering collisions
+    /// Camera-ray marches whose step was lengthened to keep at most 65536 nodes (kMaxMarchSteps).
+    uint64_t bounded_marches = 0;
 
     RenderCounters& operator+=(const RenderCounters& o) {
         camera_rays += o.camera_rays;
@@ -37,6 +39,7 @@ struct RenderCounters {
         transmittance_rays += o.transmittance_rays;
         free_flights += o.free_flights;
         scattering_events += o.scattering_events;
+        bounded_marches += o.bounded_marches;
         return *this;
     }
 };

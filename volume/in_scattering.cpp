@@ -1,6 +1,7 @@
 #include "volume/in_scattering.h"
 
 #include "volume/equiangular.h"
+#include "volume/march_walk.h"
 #include "volume/gauss_interpolant.h"
 
 #include <array>
@@ -234,7 +235,14 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
             }
             if (!(march_length > 0.0f) || !(march_length < kInfinity))
                 march_length = 0.0f;
-            const auto n_steps = static_cast<int>(std::ceil(march_length / settings.step_m));
+            // At most kMaxMarchSteps per stretch (counted when the step had to be lengthened);
+            // in double, as march_length / step_m can exceed every int (step_m = 1e-30).
+            double steps_wanted = std::ceil(static_cast<double>(march_length) / settings.step_m);
+            if (steps_wanted > kMaxMarchSteps) {
+                steps_wanted = kMaxMarchSteps;
+                ++counters.bounded_marches;
+            }
+            const auto n_steps = static_cast<int>(steps_wanted);
             // n_steps is 0 when nothing is left to see through.
             const float dt = march_length / static_cast<float>(std::max(n_steps, 1));
             // Distances within a step are drawn from exp(-sigma_bar s) truncated to [0, dt].

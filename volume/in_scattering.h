@@ -57,6 +57,9 @@ struct VolumeCounters {
     uint64_t transmittance_estimates = 0;
     uint64_t scattering_events = 0;  ///< real scattering collisions (tracking integrators)
     uint64_t free_flights = 0;       ///< free-flight distance samples (tracking integrators)
+    /// Rays (or stretches) whose march step was lengthened to keep at most 65536 nodes
+    /// (kMaxMarchSteps in volume/march_walk.h).
+    uint64_t bounded_marches = 0;
 };
 
 /// Single scattering by ray marching. Each march step [a, a + dt] inside a stretch of constant

@@ -7,9 +7,35 @@
 #include "volume/in_scattering.h"
 #include "volume/medium_set.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace kasumi {
+
+/// The most march nodes one ray takes through the media: 2^16. A finer step is lengthened to
+/// 1/65536 of the ray's way through them (counted in counters.bounded_marches and reported after
+/// the render): beyond that a march costs without bound (render.volume.step_m = 1e-30 never
+/// ended) and its nodes approach the float resolution of t (2^-24 of the distance).
+constexpr double kMaxMarchSteps = 65536.0;
+
+/// The march step for a ray whose way through the media is `extent` long (same units as h):
+/// h, or extent / kMaxMarchSteps when h would take more nodes than that.
+inline float bounded_march_step(float h, double extent, VolumeCounters& counters) {
+    if (!(extent < static_cast<double>(kInfinity)) || !(extent > h * kMaxMarchSteps))
+        return h;
+    ++counters.bounded_marches;
+    return static_cast<float>(extent / kMaxMarchSteps);
+}
+
+/// The way a ray goes through `segments`, from the first segment's start to the last finite end.
+inline double march_extent(const std::vector<MajorantSegment>& segments) {
+    double end = 0.0;
+    for (const MajorantSegment& s : segments)
+        if (s.t1 < kInfinity)
+            end = s.t1;
+    return segments.empty() ? 0.0 : std::max(end - static_cast<double>(segments.front().t0), 0.0);
+}
 
 /// Calls visit(t, x, coefficients, media_mask, tau) at every grid node inside a segment, with tau
 /// the optical depth from t_min to t (double, per channel); visit returns false to stop the walk.

@@ -73,8 +73,9 @@ PointCoefficients coefficients_at(const MediumSet& media, const RayMediaQuery& q
 
 Rgb march(const MediumSet& media, const Ray& ray, float step_m,
           const std::vector<MajorantSegment>& segments, Pcg32& rng, VolumeCounters& counters) {
+    const float h = bounded_march_step(step_m, march_extent(segments), counters);
     const glm::dvec3 tau = march_walk(
-        media, ray, step_m, rng.next_float(), segments, true, counters,
+        media, ray, h, rng.next_float(), segments, true, counters,
         [](float, const Vec3&, const PointCoefficients&, uint32_t, const glm::dvec3& depth) {
             return !(depth.x > kOpaqueDepth && depth.y > kOpaqueDepth && depth.z > kOpaqueDepth);
         });

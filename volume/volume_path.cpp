@@ -129,7 +129,8 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
     // The same expressions as RayMediaQuery's, so both see the same index-space ray.
     const Vec3 o(g->world_to_index * Vec4(ray.origin, 1.0f));
     const Vec3 d(g->world_to_index * Vec4(ray.direction, 0.0f));
-    const float h = march_step_m(media, settings);
+    const float h = bounded_march_step(march_step_m(media, settings),
+                                       static_cast<double>(span->second - span->first), counters);
     float u = 0.0f;
     bool started = false, in_run = false, stopped = false;
     float run_end = 0.0f, t_prev = 0.0f, rho_prev = 0.0f;
@@ -216,7 +217,8 @@ VolumeResult march_single(const MediumSet& media, const std::vector<Light>& ligh
     VolumeResult result;
     if (segments.empty())
         return result;
-    const float h = march_step_m(media, settings);
+    const float h = bounded_march_step(march_step_m(media, settings), march_extent(segments),
+                                       counters);
     const Vec3 wo = -ray.direction;
     const bool grey = media.grey_extinction();
     thread_local std::vector<MarchLight> march_lights;
