@@ -1,10 +1,10 @@
 #include "core/csv_table.h"
 
 #include "core/error.h"
+#include "core/text_file.h"
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 namespace kasumi {
@@ -109,12 +109,7 @@ WavelengthTable parse_wavelength_csv(const std::string& text, const std::string&
 }
 
 WavelengthTable read_wavelength_csv(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f)
-        throw_input_error(path + ": cannot open the table file");
-    std::ostringstream s;
-    s << f.rdbuf();
-    return parse_wavelength_csv(s.str(), path);
+    return parse_wavelength_csv(read_text_file(path, "the table file"), path);
 }
 
 WavelengthTable make_wavelength_table(const std::vector<double>& nm,

@@ -1,4 +1,5 @@
 #include "core/error.h"
+#include "core/text_file.h"
 #include "lights/ies_profile.h"
 
 #include <algorithm>
@@ -390,12 +391,7 @@ IesProfile parse_ies(const std::string& text, const std::string& file) {
 }
 
 IesProfile read_ies(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw_input_error(path + ": cannot open IES file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_ies(text.str(), path);
+    return parse_ies(read_text_file(path, "IES file"), path);
 }
 
 }  // namespace kasumi
