@@ -17,6 +17,34 @@
 namespace kasumi {
 namespace {
 
+/// A directory of one test's own under the system temp dir, removed when it goes out of scope
+/// (also when a failed assertion ends the test early).
+class ScratchDir {
+  public:
+    explicit ScratchDir(const std::string& tag)
+        : m_path(std::filesystem::temp_directory_path() /
+                 ("kasumi_study_" + tag + "_" + std::to_string(::getpid()))) {
+        std::filesystem::create_directories(m_path);
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(m_path, ec);
+    }
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+
+    const std::filesystem::path& path() const { return m_path; }
+    /// Writes `text` to the file `name` in the directory and returns the file's path.
+    std::string write(const std::string& name, const std::string& text) const {
+        const std::string file = (m_path / name).string();
+        std::ofstream(file) << text;
+        return file;
+    }
+
+  private:
+    std::filesystem::path m_path;
+};
+
 RgbPlane plane(int w, int h, std::vector<Rgb> pixels) {
     return RgbPlane{w, h, std::move(pixels)};
 }
@@ -161,16 +189,12 @@ TEST(StudyAxes, MostAccurateValue) {
 }
 
 TEST(StudyDocument, CreatesMissingParents) {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("kasumi_study_doc_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "s.json").string();
-    std::ofstream(path) << R"({"film": {"width": 4}})";
+    const ScratchDir dir("doc");
+    const std::string path = dir.write("s.json", R"({"film": {"width": 4}})");
     const Json doc = study_document(path, {"/render/volume/step_m=0.5", "/film/spp=3"});
     EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(), 0.5);
     EXPECT_EQ(doc["film"]["spp"].get<int>(), 3);
     EXPECT_EQ(doc["film"]["width"].get<int>(), 4);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(StudyDocument, WildcardsExpandOverArraysAndObjects) {
@@ -198,13 +222,10 @@ TEST(StudyDocument, WildcardsExpandOverArraysAndObjects) {
 }
 
 TEST(StudyDocument, ObjectValuesMergeIntoObjects) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("kasumi_study_merge_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "s.json").string();
-    std::ofstream(path) << R"({"lights": [{"type": "point", "shadows": "map",
+    const ScratchDir dir("merge");
+    const std::string path = dir.write("s.json", R"({"lights": [{"type": "point", "shadows": "map",
                                             "shadow_map": {"resolution": 64, "bias": 0.1}},
-                                           {"type": "point"}]})";
+                                           {"type": "point"}]})");
     // Merge (RFC 7396): members replace or add, nested objects merge, null removes.
     const Json doc = study_document_of(
         path, std::vector<StudySetting>{
@@ -225,7 +246,6 @@ TEST(StudyDocument, ObjectValuesMergeIntoObjects) {
     const Json set = study_document(path, {"/lights/*/samples=2"});
     EXPECT_EQ(set["lights"][0]["samples"].get<int>(), 2);
     EXPECT_EQ(set["lights"][1]["samples"].get<int>(), 2);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(SvgPlot, OneLinePerSeriesAndFrontRings) {
@@ -252,18 +272,15 @@ TEST(StudyRun, ErrorFallsWithSamplesAndFilesAreWritten) {
     // and the 512-spp reference adds its own: MSE(1 spp) ~ s^2 (1 + 1/512) against
     // MSE(16 spp) ~ s^2 (1/16 + 1/512), a ratio near 15; asserting 4 leaves a wide margin.
     // Seeds are fixed, so the test is deterministic.
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("kasumi_study_run_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "fog.json").string();
-    std::ofstream(path) << R"({
+    const ScratchDir dir("run");
+    const std::string path = dir.write("fog.json", R"({
       "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
       "film": {"width": 12, "height": 8, "spp": 1},
       "lights": [{"type": "point", "position": [0.5, 1, 0], "intensity_cd": 100}],
       "media": [{"type": "homogeneous", "bounds": [[-3, -3, -3], [3, 3, 3]],
                  "sigma_a": 0.05, "sigma_s": 0.3}],
       "render": {"seed": 3, "threads": 1}
-    })";
+    })");
     StudySpec spec;
     spec.scene_path = path;
     spec.axes = {parse_vary("spp=1,16")};
@@ -277,21 +294,17 @@ TEST(StudyRun, ErrorFallsWithSamplesAndFilesAreWritten) {
     EXPECT_GT(r.rows[0].error.rel_mse, 4.0 * r.rows[1].error.rel_mse);
     EXPECT_TRUE(r.reference.has_standard_error);
     EXPECT_LT(r.reference.standard_error.rel_mse, r.rows[1].error.rel_mse);
-    write_study(r, (dir / "out").string());
+    write_study(r, (dir.path() / "out").string());
     for (const char* f : {"study.csv", "study.md", "study.svg"})
-        EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
-    std::filesystem::remove_all(dir);
+        EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / f)) << f;
 }
 
 TEST(StudyRun, BuildTimingRendersTheSameImages) {
     // Timing the build as well (each repeat builds the runtime from the parsed scene) must not
     // change what is rendered: with fixed seeds the errors equal those of render-only timing,
     // for an axis that merges an object into every light (ray-traced shadows vs a shadow map).
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("kasumi_study_build_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "shadow.json").string();
-    std::ofstream(path) << R"({
+    const ScratchDir dir("build");
+    const std::string path = dir.write("shadow.json", R"({
       "camera": {"position": [0, 3, 5], "look_at": [0, 0, 0]},
       "film": {"width": 12, "height": 8, "spp": 1, "jitter": false},
       "materials": {"m": {"type": "phong", "kd": 0.7}},
@@ -300,7 +313,7 @@ TEST(StudyRun, BuildTimingRendersTheSameImages) {
                  {"type": "sphere", "material": "m", "center": [0, 0.5, 0], "radius": 0.5}],
       "lights": [{"type": "point", "position": [0.5, 3, 0], "intensity_cd": 10}],
       "render": {"seed": 3}
-    })";
+    })");
     StudySpec spec;
     spec.scene_path = path;
     // The automatic reference takes the last object listed: ray-traced shadows.
@@ -324,7 +337,6 @@ TEST(StudyRun, BuildTimingRendersTheSameImages) {
     EXPECT_EQ(with_build.rows[1].error.rmse, 0.0);
     EXPECT_NE(study_markdown(with_build).find("shadow_map.resolution=64, shadows=map"),
               std::string::npos);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(StudyRun, ProbeAgainstExactBeerLambert) {
@@ -333,17 +345,14 @@ TEST(StudyRun, ProbeAgainstExactBeerLambert) {
     // estimates of p = T, s.e. sqrt(p (1 - p) / N) = 0.0033 at N = 1e4; |error| < 4 s.e. fails
     // with probability 6e-5 (fixed seeds: deterministic). The march is exact in a homogeneous
     // medium (optical depth integrated analytically), so its error is rounding only.
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("kasumi_study_probe_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "fog.json").string();
-    std::ofstream(path) << R"({
+    const ScratchDir dir("probe");
+    const std::string path = dir.write("fog.json", R"({
       "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
       "film": {"width": 4, "height": 4, "spp": 1},
       "media": [{"type": "homogeneous", "bounds": [[-3, -3, -3], [3, 3, 3]],
                  "sigma_a": 0.05, "sigma_s": 0.3}],
       "render": {"seed": 3, "threads": 1}
-    })";
+    })");
     StudySpec spec;
     spec.scene_path = path;
     spec.axes = {parse_vary("/render/volume/estimator=march,delta"), parse_vary("spp=10000")};
@@ -371,7 +380,6 @@ TEST(StudyRun, ProbeAgainstExactBeerLambert) {
     EXPECT_NEAR(shifted.rows[0].error.max_rel_luminance, 0.01 / 1.01, 1e-5);
     EXPECT_FALSE(study_markdown(shifted).find("transmittance from (0, 0, -5) to (0, 0, 5)") ==
                  std::string::npos);
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace
