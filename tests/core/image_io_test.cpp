@@ -225,6 +225,46 @@ TEST(ExrIo, RefusesNonFiniteValuesNamingChannelAndPixel) {
     EXPECT_TRUE(dir.entries().empty());
 }
 
+TEST(ExrIo, BorrowedPlanesWriteTheSameFileAsTheImage) {
+    // What the renderer does: the header image carries size and metadata, the pixels are read
+    // from planes owned elsewhere (the film), in the order given.
+    ScratchDir dir;
+    const Image image = make_render_like_image(6, 4);
+    Image header(image.width, image.height);
+    header.metadata = image.metadata;
+    header.chromaticities = image.chromaticities;
+    std::vector<ExrChannelView> planes;
+    for (const ImageChannel& channel : image.channels)
+        planes.push_back({channel.name, channel.data.data()});
+    write_exr(header, planes, dir.file("planes.exr"));
+    write_exr(image, dir.file("image.exr"));
+    const Image a = read_exr(dir.file("planes.exr"));
+    const Image b = read_exr(dir.file("image.exr"));
+    ASSERT_EQ(a.channels.size(), image.channels.size());
+    for (const ImageChannel& channel : image.channels) {
+        ASSERT_NE(a.find(channel.name), nullptr) << channel.name;
+        EXPECT_EQ(a.find(channel.name)->data, channel.data) << channel.name;
+    }
+    EXPECT_EQ(a.metadata, b.metadata);
+    EXPECT_EQ(a.chromaticities.white_x, image.chromaticities.white_x);
+
+    // Same guards: a non-finite value or a repeated name, and nothing is written.
+    std::vector<float> bad(6 * 4, 1.0f);
+    bad[5] = std::numeric_limits<float>::quiet_NaN();
+    std::vector<ExrChannelView> with_nan = planes;
+    with_nan.push_back({"extra.X", bad.data()});
+    std::string message;
+    EXPECT_EQ(error_kind_of([&] { write_exr(header, with_nan, dir.file("nan.exr")); }, &message),
+              ErrorKind::Runtime);
+    EXPECT_NE(message.find("extra.X' pixel (5, 0)"), std::string::npos) << message;
+    std::vector<ExrChannelView> repeated = planes;
+    repeated.push_back(planes.front());
+    EXPECT_EQ(error_kind_of([&] { write_exr(header, repeated, dir.file("rep.exr")); }),
+              ErrorKind::Runtime);
+    EXPECT_FALSE(fs::exists(dir.file("nan.exr")));
+    EXPECT_FALSE(fs::exists(dir.file("rep.exr")));
+}
+
 TEST(ExrIo, ReadingAMissingOrCorruptFileIsAnInputErrorNamingIt) {
     ScratchDir dir;
     std::string message;
