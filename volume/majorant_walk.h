@@ -7,9 +7,68 @@
 /// overlapping media summed, listed for the whole ray).
 #include "volume/medium_set.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace kasumi {
+
+/// A brick span whose majorant optical depth exceeds this is walked cell by cell instead: the
+/// trackers' tentative collisions number about the majorant depth, and one dense voxel made a
+/// brick's whole span cost that many (density_scale 1e6 on a cloud never finished), also where
+/// the ray crosses the brick's empty part. Ordinary clouds (depth per brick of order 1) never
+/// reach it, so their walks and random numbers are unchanged.
+constexpr float kDenseBrickDepth = 64.0f;
+
+/// Calls visit(t0, t1, density_max, density_min) for the voxel cells of `brick` that the
+/// index-space ray o + t d crosses within [t0, t1] (in order, 3D DDA), skipping cells whose eight
+/// corner voxels are all 0 (no density anywhere inside). The bounds are the cell's corner
+/// extremes, which bound trilinear interpolation inside the cell exactly; a rounding sliver left
+/// past the last cell gets the brick's bounds. Returns false as soon as visit does.
+template <class Visit>
+bool walk_brick_cells(const BrickRef& brick, const Vec3& o, const Vec3& d, float t0, float t1,
+                      float brick_max, float brick_min, Visit&& visit) {
+    constexpr int n = DensityGrid::kBrick, stride = DensityGrid::kStored;
+    const Vec3 p = o - brick.lower;  // brick-local index space: cell c covers [c, c + 1)
+    // The cell holding t0, clamped: the span lies in the brick up to rounding.
+    IVec3 cell = glm::clamp(IVec3(glm::floor(p + d * t0)), IVec3(0), IVec3(n - 1));
+    IVec3 step(0);
+    Vec3 t_next(kInfinity), t_delta(kInfinity);
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] > 0.0f) {
+            step[a] = 1;
+            t_next[a] = (static_cast<float>(cell[a] + 1) - p[a]) / d[a];
+            t_delta[a] = 1.0f / d[a];
+        } else if (d[a] < 0.0f) {
+            step[a] = -1;
+            t_next[a] = (static_cast<float>(cell[a]) - p[a]) / d[a];
+            t_delta[a] = -1.0f / d[a];
+        }
+    }
+    float t = t0;
+    for (int guard = 0; guard < 3 * n + 3 && t < t1; ++guard) {
+        const int axis =
+            t_next.x <= t_next.y ? (t_next.x <= t_next.z ? 0 : 2) : (t_next.y <= t_next.z ? 1 : 2);
+        const float t_exit = std::min(std::max(t_next[axis], t), t1);
+        const float* v = brick.voxels + (cell.x + stride * (cell.y + stride * cell.z));
+        float hi = v[0], lo = v[0];
+        for (int k = 1; k < 8; ++k) {
+            const float x = v[(k & 1) + stride * (((k >> 1) & 1) + stride * (k >> 2))];
+            hi = std::max(hi, x);
+            lo = std::min(lo, x);
+        }
+        if (hi > 0.0f && t_exit > t && !visit(t, t_exit, hi, lo))
+            return false;
+        t = t_exit;
+        cell[axis] += step[axis];
+        if (cell[axis] < 0 || cell[axis] >= n)
+            break;
+        t_next[axis] += t_delta[axis];
+    }
+    // Rounding can leave a sliver of the span past the last cell: the brick's bounds cover it.
+    if (t < t1)
+        return visit(t, t1, brick_max, brick_min);
+    return true;
+}
 
 /// Calls visit(const MajorantSegment& s, const BrickRef* brick) for each majorant segment of
 /// [ray.t_min, ray.t_max] in order until visit returns false (then returns false). `brick` is
@@ -32,7 +91,16 @@ bool walk_majorants(const MediumSet& media, const Ray& ray, Visit&& visit) {
                              [&](const BrickSpan& b, const BrickRef& brick) {
                                  const MajorantSegment s{b.t0, b.t1, sigma_t * b.density_max,
                                                          sigma_t * b.density_min, 1u};
-                                 return visit(s, &brick);
+                                 if (!(max_component(s.sigma_max) * (b.t1 - b.t0) >
+                                       kDenseBrickDepth))
+                                     return visit(s, &brick);
+                                 return walk_brick_cells(
+                                     brick, o_index, d_index, b.t0, b.t1, b.density_max,
+                                     b.density_min, [&](float t0, float t1, float hi, float lo) {
+                                         return visit(MajorantSegment{t0, t1, sigma_t * hi,
+                                                                      sigma_t * lo, 1u},
+                                                      &brick);
+                                     });
                              });
     }
     thread_local std::vector<MajorantSegment> segments;

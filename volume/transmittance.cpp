@@ -47,7 +47,9 @@ class Collisions {
                 m_left -= depth;
                 return true;
             }
-            t += m_left / mu;
+            // A gap below t's float resolution (mu ulp(t) >> 1) would leave t where it is, and
+            // where sigma(t) = 0 the walk would never end: advance t by at least one ulp.
+            t = std::max(t + m_left / mu, std::nextafter(t, kInfinity));
             m_left = unit_exponential(m_rng);
             if (!at(t))
                 return false;
