@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "volume/density_grid_build.h"
+#include "volume/vdb_header.h"
 
 #include <openvdb/openvdb.h>
 
@@ -62,9 +63,10 @@ openvdb::FloatGrid::Ptr read_float_grid(const std::string& path, const std::stri
 
 LoadedGrid load_density_grid(const std::string& path, const std::string& grid_name,
                              const std::string& context) {
-    initialize_openvdb();
     if (!std::filesystem::is_regular_file(path))
         throw_input_error(context + ": no such file: " + path);
+    check_vdb_header(path, context);  // OpenVDB trusts the header's lengths and counts
+    initialize_openvdb();
     openvdb::FloatGrid::Ptr grid;
     try {
         grid = read_float_grid(path, grid_name, context);
