@@ -43,8 +43,8 @@ class HeaderReader {
     void bytes(void* out, uint64_t n, const char* what) {
         if (n > m_size - m_pos) {
             fail("truncated: " + std::string(what) + " at byte " + std::to_string(m_pos) +
-                 " needs " + std::to_string(n) + " bytes, the file has " +
-                 std::to_string(m_size) + " bytes");
+                 " needs " + std::to_string(n) + " bytes, the file has " + std::to_string(m_size) +
+                 " bytes");
         }
         m_in.read(static_cast<char*>(out), static_cast<std::streamsize>(n));
         if (!m_in)
@@ -70,8 +70,8 @@ class HeaderReader {
     void skip(uint64_t n, const char* what) {
         if (n > m_size - m_pos) {
             fail("truncated: " + std::string(what) + " at byte " + std::to_string(m_pos) +
-                 " needs " + std::to_string(n) + " bytes, the file has " +
-                 std::to_string(m_size) + " bytes");
+                 " needs " + std::to_string(n) + " bytes, the file has " + std::to_string(m_size) +
+                 " bytes");
         }
         m_pos += n;
         m_in.seekg(static_cast<std::streamoff>(m_pos));
@@ -95,7 +95,9 @@ class HeaderReader {
             skip(count("a metadata value's size", 1), "a metadata value");
         }
     }
-    [[noreturn]] void fail(const std::string& what) const { throw_input_error(m_where + ": " + what); }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw_input_error(m_where + ": " + what);
+    }
 
   private:
     std::ifstream m_in;
