@@ -46,20 +46,32 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
     Progress progress("render", static_cast<uint64_t>(tiles_x) * tiles_y, options.progress);
     const auto start = std::chrono::steady_clock::now();
 
+    // Cancellation is polled before every sample (one relaxed atomic load, nothing next to a
+    // camera ray): a pixel of 2^20 samples stops within one sample, not at the end of its tile.
+    // A pixel cut short is left unwritten, like the tiles never started.
+    const auto cancelled = [&] {
+        if (options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed))
+            return false;
+        stopped = true;
+        return true;
+    };
     auto render_tile = [&](int tile_index) {
-        if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) {
-            stopped = true;
+        if (cancelled())
             return;
-        }
         const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
         RenderCounters local;
-        for (int y = y0; y < std::min(y0 + tile, height); ++y) {
+        for (int y = y0; y < std::min(y0 + tile, height) && !stopped; ++y) {
             for (int x = x0; x < std::min(x0 + tile, width); ++x) {
                 PixelSample sum;
                 sum.transmittance = Rgb(0.0f);
                 int hits = 0;
                 float depth_sum = 0.0f;
+                bool complete = true;
                 for (int s = 0; s < spp; ++s) {
+                    if (cancelled()) {
+                        complete = false;
+                        break;
+                    }
                     const PixelSample p = render_pixel_sample(scene, x, y, s, options.frame, local);
                     if (!is_finite_sample(p)) {
                         ++local.nonfinite_samples;
@@ -75,6 +87,8 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                         depth_sum += p.depth;
                     }
                 }
+                if (!complete)
+                    break;
                 result.film.set_pixel(x, y, sum, spp, hits, depth_sum);
             }
         }
