@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <new>
 
 int main(int argc, char** argv) {
     CLI::App app{"kasumi: a renderer of participating media"};
@@ -32,6 +33,11 @@ int main(int argc, char** argv) {
     } catch (const kasumi::Error& e) {
         std::fprintf(stderr, "kasumi: %s\n", e.what());
         return e.exit_code();
+    } catch (const std::bad_alloc&) {
+        // Not a bug but a request too large for this machine (a 16384x16384 film, a huge grid).
+        std::fprintf(stderr, "kasumi: out of memory: the scene, its files or the film (--res) "
+                             "need more memory than this machine has\n");
+        return static_cast<int>(kasumi::ErrorKind::Runtime);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "kasumi: internal error: %s\n", e.what());
         return static_cast<int>(kasumi::ErrorKind::Runtime);
