@@ -22,6 +22,29 @@ double channel(const Rgb& c, int i) {
     return i == 0 ? c.r : i == 1 ? c.g : c.b;
 }
 
+/// An ImageError holding the scales set by a reference of mean luminance y_mean: eps, which
+/// regularises the relative MSE, and the luminance floor of the max relative error.
+ImageError scaled_by(double y_mean, const ErrorSettings& settings) {
+    ImageError e;
+    e.eps = std::pow(settings.eps_fraction * y_mean, 2.0);
+    e.luminance_floor = settings.floor_fraction * y_mean;
+    return e;
+}
+
+/// The eps the relative MSE divides by: a black reference has no scale, so an absolute eps
+/// keeps rel_mse finite.
+double relative_eps(const ImageError& e) {
+    return e.eps > 0.0 ? e.eps : 1e-12;
+}
+
+/// Sets rmse and rel_mse from sums of squared and relative squared errors over the three
+/// channels of `pixels` pixels.
+void set_means(ImageError& e, double squared, double relative, size_t pixels) {
+    const double n = 3.0 * static_cast<double>(std::max<size_t>(pixels, 1));
+    e.rmse = std::sqrt(squared / n);
+    e.rel_mse = relative / n;
+}
+
 }  // namespace
 
 RgbPlane rgb_plane(const Image& image, const std::string& what) {
@@ -55,12 +78,9 @@ RgbPlane average(const RgbPlane& a, const RgbPlane& b) {
 ImageError image_error(const RgbPlane& test, const RgbPlane& reference,
                        const ErrorSettings& settings) {
     require_same_size(test, reference);
-    ImageError e;
     const double y_mean = mean_luminance(reference);
-    e.eps = std::pow(settings.eps_fraction * y_mean, 2.0);
-    e.luminance_floor = settings.floor_fraction * y_mean;
-    // A black reference has no scale: fall back to an absolute eps so rel_mse stays finite.
-    const double eps = e.eps > 0.0 ? e.eps : 1e-12;
+    ImageError e = scaled_by(y_mean, settings);
+    const double eps = relative_eps(e);
     double squared = 0.0, relative = 0.0;
     for (size_t i = 0; i < test.pixels.size(); ++i) {
         const Rgb& a = test.pixels[i];
@@ -77,9 +97,7 @@ ImageError image_error(const RgbPlane& test, const RgbPlane& reference,
                 std::max(e.max_rel_luminance, std::abs(double(luminance(a)) - y_ref) / y_ref);
         }
     }
-    const double n = 3.0 * static_cast<double>(std::max<size_t>(test.pixels.size(), 1));
-    e.rmse = std::sqrt(squared / n);
-    e.rel_mse = relative / n;
+    set_means(e, squared, relative, test.pixels.size());
     e.mean_luminance_error = y_mean > 0.0 ? (mean_luminance(test) - y_mean) / y_mean : 0.0;
     return e;
 }
@@ -88,11 +106,8 @@ ImageError reference_standard_error(const RgbPlane& a, const RgbPlane& b,
                                     const ErrorSettings& settings) {
     require_same_size(a, b);
     const RgbPlane mean = average(a, b);
-    ImageError e;
-    const double y_mean = mean_luminance(mean);
-    e.eps = std::pow(settings.eps_fraction * y_mean, 2.0);
-    e.luminance_floor = settings.floor_fraction * y_mean;
-    const double eps = e.eps > 0.0 ? e.eps : 1e-12;
+    ImageError e = scaled_by(mean_luminance(mean), settings);
+    const double eps = relative_eps(e);
     double variance = 0.0, relative = 0.0;
     for (size_t i = 0; i < a.pixels.size(); ++i) {
         for (int c = 0; c < 3; ++c) {
@@ -102,9 +117,7 @@ ImageError reference_standard_error(const RgbPlane& a, const RgbPlane& b,
             relative += d * d / 4.0 / (m * m + eps);
         }
     }
-    const double n = 3.0 * static_cast<double>(std::max<size_t>(a.pixels.size(), 1));
-    e.rmse = std::sqrt(variance / n);
-    e.rel_mse = relative / n;
+    set_means(e, variance, relative, a.pixels.size());
     return e;
 }
 
