@@ -60,6 +60,22 @@ void expect_same_pixels(const Image& a, const Image& b, const std::string& what)
     }
 }
 
+/// Renders `reuse`'s frames [0, frames) again with reuse off, into <dir>/rebuilt/<name>.####.exr,
+/// expects every frame bit-identical to the reusing run's and returns the rebuild's summary.
+SequenceSummary rebuild_matches(const SequenceOptions& reuse, const std::string& dir,
+                                const std::string& name, int64_t frames) {
+    SequenceOptions rebuild = reuse;
+    rebuild.reuse = false;
+    rebuild.output_pattern = dir + "/rebuilt/" + name + ".####.exr";
+    const SequenceSummary without = run_sequence(rebuild);
+    for (int64_t f = 0; f < frames; ++f) {
+        expect_same_pixels(read_exr(frame_path(reuse.output_pattern, f)),
+                           read_exr(frame_path(rebuild.output_pattern, f)),
+                           "frame " + std::to_string(f));
+    }
+    return without;
+}
+
 TEST(FrameRange, ParsesRangesStepsAndSingleFrames) {
     EXPECT_EQ(parse_frame_range("0-23").frames().size(), 24u);
     EXPECT_EQ(parse_frame_range("0-10:5").frames(), (std::vector<int64_t>{0, 5, 10}));
@@ -228,17 +244,9 @@ TEST(Sequence, ReuseKeepsMeshesAndTheBvhWithoutChangingABit) {
     EXPECT_EQ(with.reuse.lights_parsed, 4u + 5u);  // only lamp 0 changes over frames 0-5
     EXPECT_EQ(with.reuse.media_parsed, 6u);        // the fog thins every frame
 
-    SequenceOptions rebuild = reuse;
-    rebuild.reuse = false;
-    rebuild.output_pattern = dir + "/rebuilt/fog.####.exr";
-    const SequenceSummary without = run_sequence(rebuild);
+    const SequenceSummary without = rebuild_matches(reuse, dir, "fog", 6);
     EXPECT_EQ(without.reuse.bvh_built, 6u);
     EXPECT_EQ(without.reuse.meshes_loaded, 18u);
-    for (int64_t f = 0; f < 6; ++f) {
-        expect_same_pixels(read_exr(frame_path(reuse.output_pattern, f)),
-                           read_exr(frame_path(rebuild.output_pattern, f)),
-                           "frame " + std::to_string(f));
-    }
 }
 
 /// sunset_sequence.json's scene (ground, wall, fast sky with aerial perspective) with the sun
@@ -274,17 +282,9 @@ TEST(Sequence, SkyTablesAreReusedUntilTheAtmosphereChangesWithoutChangingABit) {
     EXPECT_EQ(with.reuse.sky_tables_reused, 2u);  // frames 1 and 3
     EXPECT_EQ(with.reuse.bvh_reused, 3u);
 
-    SequenceOptions rebuild = reuse;
-    rebuild.reuse = false;
-    rebuild.output_pattern = dir + "/rebuilt/sky.####.exr";
-    const SequenceSummary without = run_sequence(rebuild);
+    const SequenceSummary without = rebuild_matches(reuse, dir, "sky", 4);
     EXPECT_EQ(without.reuse.sky_tables_built, 4u);
     EXPECT_EQ(without.reuse.sky_tables_reused, 0u);
-    for (int64_t f = 0; f < 4; ++f) {
-        expect_same_pixels(read_exr(frame_path(reuse.output_pattern, f)),
-                           read_exr(frame_path(rebuild.output_pattern, f)),
-                           "frame " + std::to_string(f));
-    }
     // The sun-dependent tables follow the sun: the frames of one atmosphere are not alike.
     const Image first = read_exr(frame_path(reuse.output_pattern, 0));
     const Image second = read_exr(frame_path(reuse.output_pattern, 1));
