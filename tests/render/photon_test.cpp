@@ -82,6 +82,27 @@ std::vector<Light> every_light_type() {
     return lights;
 }
 
+/// One camera ray's radiance sample (green channel, cd/m²) on the random stream (seed, i).
+double camera_radiance(const SceneRuntime& scene, const Ray& ray, uint64_t seed, int i) {
+    Pcg32 rng(seed, static_cast<uint64_t>(i));
+    RenderCounters counters;
+    return static_cast<double>(trace_camera_ray(scene, ray, rng, counters).radiance.g);
+}
+
+/// The mean radiance (green channel, cd/m²) seen from `origin` over n directions uniform on the
+/// sphere, direction i and its path drawn from the stream (seed, i).
+double mean_radiance_over_sphere(const SceneRuntime& scene, const Vec3& origin, uint64_t seed,
+                                 int n) {
+    RenderCounters counters;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        Pcg32 rng(seed, static_cast<uint64_t>(i));
+        const Vec3 d = sample_uniform_sphere(rng.next_vec2());
+        sum += trace_camera_ray(scene, Ray{origin, d, 0.0f, kInfinity}, rng, counters).radiance.g;
+    }
+    return sum / n;
+}
+
 TEST(PhotonEmission, PhotonPowersSumExactlyToEachLightsFlux) {
     const std::vector<Light> lights = every_light_type();
     const BoundingSphere sphere{Vec3(0.5f, 1.0f, 0.0f), 6.0f};
@@ -338,17 +359,8 @@ TEST(PhotonRender, ClosedDiffuseSphereRadianceByFinalGathering) {
     ASSERT_NE(gi, nullptr);
     EXPECT_EQ(gi->maps().caustic.size(), 0u);      // no specular surface: no caustic photons
     EXPECT_GT(gi->maps().global.size(), 300000u);  // ~2 stored per photon for ρ = 1/2
-    RenderCounters counters;
-    double sum = 0.0;
-    const int n = 2000;
-    for (int i = 0; i < n; ++i) {
-        Pcg32 rng(9, static_cast<uint64_t>(i));
-        const Vec3 d = sample_uniform_sphere(rng.next_vec2());
-        sum +=
-            trace_camera_ray(*scene, Ray{Vec3(0.0f), d, 0.0f, kInfinity}, rng, counters).radiance.g;
-    }
     const double expected = 0.5 * 10.0 / (kPiD * 0.5);
-    EXPECT_NEAR(sum / n, expected, 0.03 * expected);
+    EXPECT_NEAR(mean_radiance_over_sphere(*scene, Vec3(0.0f), 9, 2000), expected, 0.03 * expected);
 }
 
 }  // namespace
@@ -392,11 +404,7 @@ TEST(PhotonVolume, HomogeneousMediumMatchesTheVolumeIntegratorsMultipleScatterin
     // estimate of everything scattered more than once.
     const Ray ray{Vec3(0.5f, 0.3f, -3.0f), Vec3(0, 0, 1), 0.0f, kInfinity};
     auto camera = [&](const SceneRuntime& scene) {
-        return estimate(40000, [&](int i) {
-            Pcg32 rng(21, static_cast<uint64_t>(i));
-            RenderCounters counters;
-            return static_cast<double>(trace_camera_ray(scene, ray, rng, counters).radiance.g);
-        });
+        return estimate(40000, [&](int i) { return camera_radiance(scene, ray, 21, i); });
     };
     const MeanAndError multiple = camera(*runtime_from_text(fog_box("multiple")));
     const MeanAndError single = camera(*runtime_from_text(fog_box("single")));
@@ -407,11 +415,8 @@ TEST(PhotonVolume, HomogeneousMediumMatchesTheVolumeIntegratorsMultipleScatterin
     const auto* gi = dynamic_cast<const PhotonGi*>(scene->gi());
     ASSERT_NE(gi, nullptr);
     ASSERT_GT(gi->maps().volume.size(), 100000u);
-    const MeanAndError photons = estimate(2000, [&](int i) {
-        Pcg32 rng(22, static_cast<uint64_t>(i));
-        RenderCounters counters;
-        return static_cast<double>(trace_camera_ray(*scene, ray, rng, counters).radiance.g);
-    });
+    const MeanAndError photons =
+        estimate(2000, [&](int i) { return camera_radiance(*scene, ray, 22, i); });
     // Stated error: 4 combined standard errors (false failures ~6e-5 for normal means) plus 3%
     // for the density estimate's bias (its radius smooths the fluence, O(r²)). The multiple-
     // scattering part alone is several times this: a map that is missing or off by its σ_s
@@ -451,20 +456,11 @@ TEST(PhotonRender, EmissiveFurnaceBoxHasRadianceLeOverOneMinusRho) {
     ASSERT_NE(gi, nullptr);
     // Every photon is stored at each wall it hits: ~1/(1 - ρ) = 2 per emitted photon.
     EXPECT_NEAR(static_cast<double>(gi->maps().global.size()), 400000.0, 8000.0);
-    RenderCounters counters;
-    double sum = 0.0;
-    const int n = 2000;
-    for (int i = 0; i < n; ++i) {
-        Pcg32 rng(31, static_cast<uint64_t>(i));
-        const Vec3 d = sample_uniform_sphere(rng.next_vec2());
-        sum += trace_camera_ray(*scene, Ray{Vec3(0.1f, -0.2f, 0.05f), d, 0.0f, kInfinity}, rng,
-                                counters)
-                   .radiance.g;
-    }
+    const double mean = mean_radiance_over_sphere(*scene, Vec3(0.1f, -0.2f, 0.05f), 31, 2000);
     // 2000 views × 16 gathers of estimates with relative σ 1/√200 = 7% (correlated through
     // the map): ~0.5%; edges bias the disc estimate (photons of the neighbouring wall inside
     // it) by about a percent; 4% bounds both. Without the map the result would read 1.5.
-    EXPECT_NEAR(sum / n, 2.0, 0.08);
+    EXPECT_NEAR(mean, 2.0, 0.08);
 }
 
 }  // namespace
@@ -517,11 +513,8 @@ TEST(PhotonRender, EmittingSquareOntoFacingSquareGivesRhoFLe) {
     {
         // Final gathering sees the emitter's emission (the map adds nothing: the lamp is black).
         const auto scene = runtime_from_text(squares_scene(64, 10000));
-        const MeanAndError l = estimate(500, [&](int i) {
-            Pcg32 rng(2, static_cast<uint64_t>(i));
-            RenderCounters counters;
-            return static_cast<double>(trace_camera_ray(*scene, ray, rng, counters).radiance.g);
-        });
+        const MeanAndError l =
+            estimate(500, [&](int i) { return camera_radiance(*scene, ray, 2, i); });
         EXPECT_NEAR(l.mean, expected, 5.0 * l.stderr_ + 1e-3 * expected);
     }
 }
