@@ -211,7 +211,7 @@ head -c 2000 "$s/c8.vdb" >"$s/truncated.vdb"
 bad 3 "all.json: /media/1/file: no such file: .*missing.vdb" check "$s/all.json" --set /media/1/file=missing.vdb
 bad 3 "all.json: /media/1/file: .*int.vdb: grid \"density\" is not a float grid" check "$s/all.json" --set /media/1/file=int.vdb
 bad 3 "all.json: /media/1/file: .*truncated.vdb: " check "$s/all.json" --set /media/1/file=truncated.vdb
-bad 3 "all.json: /media/1/file: .*binary.json: IoError: not a VDB file" check "$s/all.json" --set /media/1/file=binary.json
+bad 3 "all.json: /media/1/file: .*binary.json: not a VDB file" check "$s/all.json" --set /media/1/file=binary.json
 bad 3 "all.json: /media/1/file: .*c8.vdb has no grid \"smoke\"" check "$s/all.json" --set /media/1/file=c8.vdb --set /media/1/grid=smoke
 printf '0,1\n180,1\n' >"$s/phase_ok.csv"
 printf '0,1\n90,x\n180,1\n' >"$s/phase_bad.csv"
@@ -316,6 +316,108 @@ for at in "0,3,1 --normal 0,1,0" "1.1,2,2 --normal 1,0,0" "0,2.5,1 --normal 0,-1
   expect_exit 0 "" -- probe illuminance "$s/all.json" --at $at --samples 64
   grep -qiE "nan|inf|null" "$work/stdout" && fail "probe illuminance --at $at: $(tr -d ' \n' <"$work/stdout")"
 done
+
+# What a hostile user tries next. `bounded` runs kasumi under a hard kill (SIGTERM is taken as a
+# cancellation request, so a plain timeout would not end a hung render) and fails on a hang.
+bounded() {
+  local limit="$1"
+  shift
+  timeout -s KILL "$limit" "$kasumi" "$@" >"$work/stdout" 2>"$work/stderr"
+  local got=$?
+  [ "$got" -ne 137 ] || fail "kasumi $* did not end within $limit s"
+  return "$got"
+}
+# limited KB ARGS...: the next kasumi runs under an address-space limit of KB kilobytes (no
+# subshell, so failures still count).
+limited() {
+  local kb="$1"
+  shift
+  printf '#!/usr/bin/env bash\nulimit -v %s\nexec "%s" "$@"\n' "$kb" "$kasumi" >"$work/limited.sh"
+  chmod +x "$work/limited.sh"
+  local real="$kasumi"
+  kasumi="$work/limited.sh"
+  "$@"
+  local got=$?
+  kasumi="$real"
+  return "$got"
+}
+# A march step of 1e-30 m: the step count overflowed int (no in-scattering at all) or, in grids,
+# no node moved forward (the render never ended). Now at most 65536 nodes per ray, with a warning.
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['media']=d['media'][:1]; json.dump(d, open(sys.argv[2], 'w'))" \
+  "$s/all.json" "$s/fog_only.json"
+bounded 120 render "$s/fog_only.json" --set /render/volume/step_m=1e-30 --res 2x2 -o "$work/x/step.exr" \
+  --no-preview -v
+grep -q "warning: the march step .* 1e-30 m needed more than 65536 nodes" "$work/stderr" ||
+  fail "step_m 1e-30: no warning about the bounded march: $(tail -3 "$work/stderr")"
+grep -q "non-finite samples  0$" "$work/stderr" || fail "step_m 1e-30: non-finite samples"
+bounded 120 probe transmittance "$s/all.json" --set /render/volume/step_m=1e-30 --estimator march \
+  --from 0,1,-1 --to 0,1,-5 --samples 4 ||
+  fail "step_m 1e-30 through a grid: exit $?: $(head -c 300 "$work/stderr")"
+grep -qiE "nan|inf|null" "$work/stdout" && fail "probe transmittance step_m 1e-30: $(cat "$work/stdout")"
+# Density scales of 1e6 and 1e30 on the cloud, alone (one grid: the trackers walk dense bricks cell
+# by cell) under every tracker and both integrators: finite, no non-finite sample.
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['media']=d['media'][1:]; json.dump(d, open(sys.argv[2], 'w'))" \
+  "$s/all.json" "$s/cloud_only.json"
+for scale in 1e6 1e30; do
+  for est in delta ratio residual-ratio; do
+    for integ in single multiple; do
+      bounded 120 render "$s/cloud_only.json" --set /media/0/density_scale=$scale --set "/render/volume/estimator=\"$est\"" \
+        --set "/render/volume/integrator=\"$integ\"" --res 4x3 -o "$work/x/dense.exr" --no-preview -v
+      grep -q "non-finite samples  0$" "$work/stderr" ||
+        fail "density_scale $scale $est $integ: $(grep -i "non-finite\|error" "$work/stderr" | head -2)"
+    done
+  done
+done
+# A .vdb cut anywhere in its header or its first grid's metadata, or a PNG named .vdb: exit 3 naming
+# the file and what was expected (the 300-byte cut made OpenVDB allocate until std::bad_alloc).
+printf '\x89PNG\r\n\x1a\n\0\0\0\rIHDR' >"$s/image.vdb"
+bad 3 "all.json: /media/1/file: .*image.vdb: not a VDB file" check "$s/all.json" --set /media/1/file=image.vdb
+for cut in 7 40 61 100 124 200 300 1000; do
+  head -c "$cut" "$s/c8.vdb" >"$s/cut.vdb"
+  limited 4000000 bad 3 "all.json: /media/1/file: .*cut.vdb: (truncated|not a VDB file|.*bytes left in the file)" \
+    check "$s/all.json" --set /media/1/file=cut.vdb
+done
+# Scene files: empty object (renders the defaults), nested 100000 deep (the error printer overflowed
+# the stack), /dev/zero (was read until memory ran out), a unicode path.
+echo '{}' >"$s/empty_object.json"
+expect_exit 0 "" -- render "$s/empty_object.json" --res 4x3 -o "$work/x/empty.exr" --no-preview -q
+python3 -c "print('{\"film\": ' + '[' * 100000 + ']' * 100000 + '}')" >"$s/deep.json"
+bad 3 "deep.json: invalid JSON: line 1, column 265: nested deeper than 256 levels" check "$s/deep.json"
+limited 4000000 bounded 60 check /dev/zero
+[ "$?" -eq 3 ] && grep -q "/dev/zero: larger than 64 MiB" "$work/stderr" ||
+  fail "check /dev/zero: $(head -c 300 "$work/stderr")"
+mkdir -p "$work/façade 霞"
+cp "$s/all.json" "$s/lamp.ies" "$s/cloud.vdb" "$s/tri.obj" "$work/façade 霞/"
+mv "$work/façade 霞/all.json" "$work/façade 霞/scène 霞.json"
+expect_exit 0 "" -- render "$work/façade 霞/scène 霞.json" --res 4x3 -o "$work/façade 霞/out é.exr" -q
+[ -s "$work/façade 霞/out é.exr" ] && [ -s "$work/façade 霞/out é.png" ] ||
+  fail "unicode paths: outputs missing: $(ls "$work/façade 霞")"
+bad 3 "façade 霞/missing é.json: cannot open file" check "$work/façade 霞/missing é.json"
+# Outputs: the root directory, a trailing slash, a directory as the preview.
+bad 4 "/: is a directory" render "$s/all.json" -o / -q
+bad 4 "out/: is a directory" render "$s/all.json" -o "$out/" -q
+bad 4 "is a directory" render "$s/all.json" -o "$out/a.exr" --preview "$work" -q
+# A film too large for memory (16384 x 16384 under a 2 GB address-space limit): exit 1 saying so.
+limited 2000000 bad 1 "out of memory" render "$s/all.json" --res 16384x16384 -o "$out/a.exr" -q
+# SIGINT during a render of 2^20 samples per pixel: cancellation is polled per sample, so the
+# render stops within a few seconds of the signal (not after a whole tile of such pixels), exits
+# 130 and leaves only complete files (written atomically: no temporary left behind).
+mkdir -p "$work/int"
+"$kasumi" render "$s/all.json" --spp 1048576 --res 16x12 -o "$work/int/a.exr" -q 2>"$work/int.err" &
+pid=$!
+sleep 2  # past loading the scene, so the handler is installed (a default SIGINT also gives 130)
+kill -INT "$pid"
+for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+if kill -0 "$pid" 2>/dev/null; then
+  kill -KILL "$pid"
+  fail "render --spp 1048576 still running 10 s after SIGINT"
+fi
+wait "$pid"
+code=$?
+[ "$code" -eq 130 ] && grep -q "interrupted" "$work/int.err" ||
+  fail "render interrupted by SIGINT exited $code, expected 130 and a message: $(cat "$work/int.err")"
+leftover=$(ls -A "$work/int" | grep -v '^a\.exr$\|^a\.png$')
+[ -z "$leftover" ] || fail "interrupted render left temporary files: $leftover"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures robustness check(s) failed"
