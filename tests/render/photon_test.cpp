@@ -10,6 +10,7 @@
 #include "render/photon_gi.h"
 #include "render/photon_tracer.h"
 #include "test_scene.h"
+#include "tests/sample_mean.h"
 
 #include <gtest/gtest.h>
 
@@ -381,20 +382,12 @@ std::string fog_box(const std::string& integrator, const std::string& render_ext
            integrator + R"("})" + render_extra + "}}";
 }
 
-struct MeanAndError {
-    double mean = 0.0, stderr_ = 0.0;
-};
-
 template <class Sample>
 MeanAndError estimate(int n, Sample&& sample) {
-    double sum = 0.0, sum2 = 0.0;
-    for (int i = 0; i < n; ++i) {
-        const double x = sample(i);
-        sum += x;
-        sum2 += x * x;
-    }
-    const double mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1))};
+    SampleMean m;
+    for (int i = 0; i < n; ++i)
+        m.add(sample(i));
+    return m.result();
 }
 
 TEST(PhotonVolume, HomogeneousMediumMatchesTheVolumeIntegratorsMultipleScattering) {

@@ -8,6 +8,7 @@
 #include "core/rng.h"
 #include "lights/light.h"
 #include "surface/surface_scene.h"
+#include "tests/sample_mean.h"
 
 #include <gtest/gtest.h>
 
@@ -53,7 +54,7 @@ Estimate shadowed_illuminance(const SurfaceScene& scene, const Light& light, flo
                               uint64_t seed) {
     const Vec3 p(x, 0.0f, 0.0f), normal(0.0f, 1.0f, 0.0f);
     Pcg32 rng(seed, 11);
-    double sum = 0.0, sum2 = 0.0;
+    SampleMean samples;
     Estimate e;
     for (int k = 0; k < n; ++k) {
         const IncidentLight in = sample_incident(light, p, rng.next_vec2());
@@ -62,12 +63,11 @@ Estimate shadowed_illuminance(const SurfaceScene& scene, const Light& light, flo
         const bool blocked =
             scene.occluded(Ray{o, in.wi, 0.0f, glm::length(in.light_position - o) * (1 - 1e-5f)});
         (blocked ? e.blocked : e.visible) += 1;
-        const double f = blocked ? 0.0 : luminance(in.irradiance) * cos_theta;
-        sum += f;
-        sum2 += f * f;
+        samples.add(blocked ? 0.0 : luminance(in.irradiance) * cos_theta);
     }
-    e.mean = sum / n;
-    e.standard_error = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / (n - 1));
+    const MeanAndError r = samples.result();
+    e.mean = r.mean;
+    e.standard_error = r.stderr_;
     return e;
 }
 

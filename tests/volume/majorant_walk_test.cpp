@@ -3,6 +3,7 @@
 // stay unbiased on a grid of scattered blocks with many empty bricks.
 #include "volume/majorant_walk.h"
 #include "core/rng.h"
+#include "tests/sample_mean.h"
 #include "volume/density_grid.h"
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
@@ -152,15 +153,13 @@ TEST(DensityGridWalk, StopsWhenTheVisitSaysSo) {
 std::pair<double, double> mean_and_stderr(const MediumSet& media, const Ray& ray,
                                           Estimator estimator, int n) {
     VolumeCounters counters;
-    double sum = 0.0, sum_sq = 0.0;
+    SampleMean m;
     for (int i = 0; i < n; ++i) {
         Pcg32 rng(21, static_cast<uint64_t>(i));
-        const double t = estimate_transmittance(media, ray, estimator, 0.0f, rng, counters).r;
-        sum += t;
-        sum_sq += t * t;
+        m.add(estimate_transmittance(media, ray, estimator, 0.0f, rng, counters).r);
     }
-    const double mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, sum_sq / n - mean * mean) / (n - 1))};
+    const MeanAndError r = m.result();
+    return {r.mean, r.stderr_};
 }
 
 TEST(DensityGridWalk, TrackersMatchAFineMarchThroughManyEmptyBricks) {

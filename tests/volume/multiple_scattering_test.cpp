@@ -2,6 +2,7 @@
 // semi-infinite isotropic medium (Chandrasekhar's H-function), and single scattering of a
 // point light in fog (the airlight integral of Sun et al. 2005).
 #include "core/sampling.h"
+#include "tests/sample_mean.h"
 #include "vdb_test_grids.h"
 #include "volume/volume_path.h"
 
@@ -24,22 +25,15 @@ class UniformBackground final : public PathEnvironment {
     Rgb m_radiance;
 };
 
-struct Mean {
-    double mean = 0.0, stderr_ = 0.0;
-};
+using Mean = MeanAndError;
 
 Mean average(int n, const std::function<double(Pcg32&)>& sample) {
-    double sum = 0.0, sum_sq = 0.0;
+    SampleMean m;
     for (int i = 0; i < n; ++i) {
         Pcg32 rng(17, static_cast<uint64_t>(i));
-        const double x = sample(rng);
-        sum += x;
-        sum_sq += x * x;
+        m.add(sample(rng));
     }
-    Mean m;
-    m.mean = sum / n;
-    m.stderr_ = std::sqrt(std::max(0.0, sum_sq / n - m.mean * m.mean) / (n - 1));
-    return m;
+    return m.result();
 }
 
 VolumeSettings multiple(Estimator estimator) {

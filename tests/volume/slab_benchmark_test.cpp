@@ -25,6 +25,7 @@
 // discretisation; two-sided false-failure rate 6.3e-5 per check, about 1.1e-3 for the 17
 // checks). The test is labelled `statistical`, so the asan preset (label `unit`) skips it.
 #include "core/sampling.h"
+#include "tests/sample_mean.h"
 #include "volume/volume_path.h"
 
 #include <gtest/gtest.h>
@@ -57,8 +58,7 @@ struct Budget {
 
 enum class Face { Top, Bottom };
 
-struct Mean {
-    double mean = 0.0, stderr_ = 0.0;
+struct Mean : MeanAndError {
     /// Upper bound on the fraction of paths that reach a side face of the finite box.
     double lateral_leak = 0.0;
 };
@@ -108,20 +108,14 @@ class UpperSky final : public PathEnvironment {
 /// also bounds the sky estimates' bias from the box's finite width.
 template <typename Sample>
 Mean average(const DisortCase& c, int n, uint64_t seed, Sample&& sample) {
-    double sum = 0.0, sum_sq = 0.0;
+    SampleMean samples;
     VolumeCounters counters;
     for (int i = 0; i < n; ++i) {
         Pcg32 rng(seed, static_cast<uint64_t>(i));
-        const double x = sample(rng, counters);
-        sum += x;
-        sum_sq += x * x;
+        samples.add(sample(rng, counters));
     }
-    Mean m;
-    m.mean = sum / n;
-    m.stderr_ = std::sqrt(std::max(0.0, sum_sq / n - m.mean * m.mean) / (n - 1));
-    m.lateral_leak =
-        static_cast<double>(counters.free_flights) / n / (c.tau * (kHalfWidth - 2.0 / c.mu0));
-    return m;
+    return Mean{samples.result(), static_cast<double>(counters.free_flights) / n /
+                                      (c.tau * (kHalfWidth - 2.0 / c.mu0))};
 }
 
 /// r(mu0) (Face::Top) or t(mu0) (Face::Bottom) from one camera ray under the upper sky.
