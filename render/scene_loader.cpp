@@ -110,6 +110,8 @@ RenderSettings parse_render(const JsonNode& node) {
             render.volume.max_depth = parse_int_in(*depth, 1, 1 << 16);
         if (auto cache = volume.optional("light_cache"))
             render.volume.light_cache = cache->as_bool();
+        if (auto points = volume.optional("nee_points"))
+            render.volume.nee_points = parse_int_in(*points, 0, 64);
         if (auto sampling = volume.optional("light_sampling")) {
             const std::string name = sampling->as_string();
             if (name == "all") {

@@ -43,6 +43,10 @@ struct VolumeSettings {
     /// Directional lights' transmittance through a single grid medium from a precomputed cache
     /// (volume/light_cache.h; biased, stated there) instead of the estimator.
     bool light_cache = false;
+    /// > 0: the trackers' paths use ratio tracking for in-scattering with next-event
+    /// estimation at this many collisions per path segment (volume/volume_path.cpp,
+    /// tracked_path_radiance); 0: one free-flight scattering point per segment.
+    int nee_points = 0;
 };
 
 struct VolumeResult {

@@ -217,6 +217,76 @@ Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator est
     return Rgb(1.0f);
 }
 
+TrackedWalk track_collisions(const MediumSet& media, const Ray& ray, const Rgb* throughput,
+                             Pcg32& rng, VolumeCounters& counters,
+                             std::vector<TrackedCollision>& out) {
+    ++counters.free_flights;
+    out.clear();
+    const RayMediaQuery query(media, ray);
+    const bool grey = media.grey_extinction();
+    const bool emits = media.emits();
+    TrackedWalk walk;
+    bool flight_open = throughput != nullptr;
+    Rgb weight(1.0f);               // product of the ratio factors so far
+    glm::dvec3 control_depth(0.0);  // integral of the minorant before the current segment
+    Collisions collisions(rng);
+    const bool alive =
+        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+            const Rgb control = s.sigma_min;
+            const float mu = max_component(s.sigma_max);
+            const glm::dvec3 depth_before = control_depth;
+            for (int c = 0; c < 3; ++c)
+                control_depth[c] += static_cast<double>(control[c]) * (s.t1 - s.t0);
+            if (!(mu > 0.0f))
+                return true;
+            const float inv_mu = 1.0f / mu;
+            return collisions.walk(s.t0, s.t1, mu, [&](float t) {
+                const PointCoefficients k = coefficients_at(media, query, s, brick, t);
+                ++counters.density_lookups;
+                const glm::dvec3 depth =
+                    depth_before + glm::dvec3(control) * static_cast<double>(t - s.t0);
+                const Rgb t_control =
+                    grey ? Rgb(std::exp(-static_cast<float>(depth.x))) : Rgb(glm::exp(-depth));
+                if (!is_black(k.sigma_s) || emits)
+                    out.push_back({t, ray.at(t), s.media_mask, k, weight * t_control * inv_mu});
+                if (flight_open) {
+                    // Spectral tracking's choice at this collision (as in sample_free_flight).
+                    const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
+                    const Rgb w = *throughput * walk.flight_weight;
+                    const float p_s = mean(w * k.sigma_s), p_n = mean(w * sigma_n);
+                    if (!(p_s + p_n > 0.0f)) {
+                        walk.flight_weight = Rgb(0.0f);
+                        flight_open = false;
+                    } else if (rng.next_float() * (p_s + p_n) < p_s) {
+                        walk.scatter = static_cast<int>(out.size()) - 1;
+                        walk.flight_weight *= (p_s + p_n) / (mu * p_s);
+                        flight_open = false;
+                    } else {
+                        walk.flight_weight *= sigma_n * ((p_s + p_n) / (mu * p_n));
+                    }
+                }
+                // sigma - control <= mu up to rounding; the clamp only guards rounding.
+                weight *= glm::max(Rgb(1.0f) - (k.sigma_t - control) * inv_mu, Rgb(0.0f));
+                const float w = max_component(weight * t_control);
+                if (w < kRouletteWeight) {
+                    const float survive = w / kRouletteWeight;
+                    if (!(rng.next_float() < survive)) {
+                        walk.stopped_at = t;
+                        return false;
+                    }
+                    weight /= survive;
+                }
+                return true;
+            });
+        });
+    walk.flight_open = flight_open && !alive;
+    if (alive) {
+        walk.transmittance = grey ? weight * Rgb(std::exp(-static_cast<float>(control_depth.x)))
+                                  : weight * Rgb(glm::exp(-control_depth));
+    }
+    return walk;
+}
+
 FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb& throughput,
                               Pcg32& rng, VolumeCounters& counters) {
     ++counters.free_flights;

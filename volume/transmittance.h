@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace kasumi {
 
@@ -42,6 +43,50 @@ struct FreeFlight {
     /// emission term; 0 when no medium emits).
     Rgb emitted{0.0f};
 };
+
+/// One tentative collision of the ratio-tracked walk along a ray (track_collisions).
+struct TrackedCollision {
+    float t = 0.0f;
+    Vec3 position{0.0f};
+    uint32_t media_mask = 0;
+    PointCoefficients k;  ///< sigma_t, sigma_s at the collision, 1/m
+    /// T^(t) / mu(t): the walk's transmittance estimate up to t (collisions before t only)
+    /// over the rate of the collisions. For any g, E[sum_i weight_i g(t_i)] is the integral of
+    /// T(t) g(t) dt over the ray (Campbell's theorem for the Poisson process of rate mu, with
+    /// the history before t_i independent of the collision at t_i).
+    Rgb weight{0.0f};
+};
+
+/// What track_collisions returns besides the collisions.
+struct TrackedWalk {
+    /// T^ at the ray's end: an unbiased estimate of the whole ray's transmittance (0 when
+    /// Russian roulette ended the walk).
+    Rgb transmittance{0.0f};
+    /// Roulette ended the walk at t = stopped_at (else kInfinity).
+    float stopped_at = kInfinity;
+    /// The free flight decided on the same collisions (only when a throughput is passed):
+    /// `out` index of its scattering collision, or -1 (none: it escaped, was absorbed, or is
+    /// undecided because the walk stopped first, see flight_open).
+    int scatter = -1;
+    bool flight_open = false;  ///< the walk stopped before the free flight ended
+    Rgb flight_weight{1.0f};   ///< the free flight's weight so far (FreeFlight::weight)
+};
+
+/// Ratio tracking for in-scattering (a collision estimator with null collisions; Novák,
+/// Georgiev, Hanika & Jarosz 2018, "Monte Carlo Methods for Volumetric Light Transport
+/// Simulation", CGF 37(2), §6.2; the transmittance weights are those of residual ratio
+/// tracking, Novák et al. 2014 §4, with the per-brick minorant as control): walks the tentative
+/// collisions of rate mu = the segment's scalar majorant max_c sigma_max toward the ray's end,
+/// keeping T^ = exp(-integral of the minorant) times the product of
+/// (1 - (sigma_t - sigma_min) / mu) over the collisions passed, with Russian roulette once T^
+/// falls below 0.05 (unbiased). Every collision where sigma_s (or emission) is non-zero is
+/// appended to `out` (cleared first) with its weight. With a `throughput`, spectral tracking
+/// (as sample_free_flight) also runs on the same collisions and picks the path's next
+/// scattering event: one walk serves the transmittance, the in-scattering of every collision
+/// and the free flight (each unbiased on its own). Never throws.
+TrackedWalk track_collisions(const MediumSet& media, const Ray& ray, const Rgb* throughput,
+                             Pcg32& rng, VolumeCounters& counters,
+                             std::vector<TrackedCollision>& out);
 
 /// Spectral tracking (Kutz et al. 2017, "Spectral and Decomposition Tracking for Rendering
 /// Heterogeneous Volumes", ACM TOG 36(4), §3, absorption folded into the weights): walks

@@ -23,6 +23,10 @@ constexpr float kTailTransmittance = 1e-4f;
 /// Paths play Russian roulette from this many scattering events on.
 constexpr int kRouletteDepth = 3;
 
+float mean(const Rgb& c) {
+    return (c.r + c.g + c.b) * (1.0f / 3.0f);
+}
+
 bool blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight& in,
              VolumeCounters& counters) {
     if (occlusion == nullptr)
@@ -322,6 +326,109 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
     return radiance;
 }
 
+/// Volumetric path tracing with ratio tracking for in-scattering (track_collisions) on every
+/// path segment: the segment's walk gives T^(t_i) / mu at each tentative collision t_i, and
+/// with c_i = mean(throughput T^(t_i) sigma_s(t_i) / mu) (the collision's share of the
+/// segment's scattered light, light left out), next-event estimation is done at `nee_points`
+/// collisions picked by systematic sampling in the running sum of c_i (one uniform offset per
+/// segment: collision i is picked n_i times with E[n_i] = nee_points c_i, every pick weighted
+/// 1 / (nee_points c_i): unbiased, and the picks are stratified along the ray instead of one
+/// free-flight point). `multiple` continues the path from the free flight that spectral
+/// tracking draws on the same collisions (its weight, as sample_free_flight's); a flight that
+/// escapes adds what it meets beyond the media, as path_radiance.
+Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& lights,
+                          const OcclusionQuery* occlusion, const PathEnvironment* environment,
+                          const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
+                          VolumeCounters& counters, Rgb* first_escape) {
+    thread_local std::vector<TrackedCollision> points;
+    const float k = static_cast<float>(settings.nee_points);
+    const bool emits = media.emits();
+    Rgb radiance(0.0f), throughput(1.0f);
+    Ray ray = camera_segment;
+    for (int depth = 0;;) {
+        const bool last =
+            settings.integrator == VolumeIntegrator::Single || depth + 1 >= settings.max_depth;
+        const TrackedWalk walk =
+            track_collisions(media, ray, last ? nullptr : &throughput, rng, counters, points);
+        if (depth == 0 && first_escape != nullptr)
+            *first_escape = walk.transmittance;
+        float total = 0.0f;
+        for (const TrackedCollision& p : points) {
+            if (emits)
+                radiance += throughput * p.weight * media.emission(p.position, p.media_mask);
+            total += std::max(0.0f, mean(throughput * p.weight * p.k.sigma_s));
+        }
+        const Vec3 wo = -ray.direction;
+        if (total > 0.0f) {
+            // Systematic sampling: picks at u + j (j = 0, 1, ...) in the running sum of k c_i.
+            float next_pick = rng.next_float(), running = 0.0f;
+            for (const TrackedCollision& p : points) {
+                const float share = mean(throughput * p.weight * p.k.sigma_s);
+                if (!(share > 0.0f))
+                    continue;
+                running += k * share;
+                while (next_pick < running) {
+                    next_pick += 1.0f;
+                    ++counters.scattering_events;
+                    radiance += (throughput * p.weight / (k * share)) *
+                                scattered_direct(media, lights, occlusion, p.position, p.media_mask,
+                                                 wo, settings, rng, counters);
+                }
+            }
+        }
+        if (last) {
+            // No flight on the last segment: T^ stands for its escape.
+            if (depth > 0 && environment != nullptr && !is_black(throughput * walk.transmittance))
+                radiance += throughput * walk.transmittance * environment->radiance(ray, rng);
+            break;
+        }
+        // The next vertex: the free flight drawn on the walk's collisions, continued past a
+        // roulette stop by an ordinary free flight (memoryless: the same distribution).
+        // A flight that leaves the media adds what it meets there (the camera segment's own
+        // escape is composited by the caller, T * L_surface), as path_radiance does.
+        Vec3 position;
+        uint32_t mask = 0;
+        Rgb flight_weight = walk.flight_weight;
+        bool scattered = walk.scatter >= 0;
+        if (scattered) {
+            position = points[static_cast<size_t>(walk.scatter)].position;
+            mask = points[static_cast<size_t>(walk.scatter)].media_mask;
+        } else if (walk.flight_open) {
+            Ray rest = ray;
+            rest.t_min = walk.stopped_at;
+            const FreeFlight flight =
+                sample_free_flight(media, rest, throughput * flight_weight, rng, counters);
+            flight_weight *= flight.weight;
+            scattered = flight.scattered;
+            position = flight.position;
+            mask = flight.media_mask;
+        }
+        if (!scattered) {
+            if (depth > 0 && environment != nullptr && !is_black(throughput * flight_weight))
+                radiance += throughput * flight_weight * environment->radiance(ray, rng);
+            break;
+        }
+        ++depth;
+        throughput *= flight_weight;
+        const float u_pick = rng.next_float();
+        const MixtureSample next =
+            media.sample_scattering(position, mask, wo, u_pick, rng.next_vec2());
+        if (!(next.pdf > 0.0f))
+            break;
+        throughput *= next.scattering / next.pdf;
+        if (depth >= kRouletteDepth) {
+            const float survive = std::min(1.0f, max_component(throughput));
+            if (!(rng.next_float() < survive))
+                break;
+            throughput /= survive;
+        }
+        ray = Ray{position, next.wi, 0.0f, kInfinity};
+        if (environment != nullptr)
+            ray.t_max = environment->surface_distance(ray);
+    }
+    return radiance;
+}
+
 }  // namespace
 
 Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t light_index,
@@ -369,6 +476,12 @@ VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& l
         return march_single(media, lights, occlusion, ray, settings, rng, counters);
     }
     VolumeResult result;
+    if (in_scatter && settings.nee_points > 0) {
+        // One walk gives the segment's transmittance and its in-scattering.
+        result.radiance = tracked_path_radiance(media, lights, occlusion, environment, ray,
+                                                settings, rng, counters, &result.transmittance);
+        return result;
+    }
     if (in_scatter && nothing_behind) {
         // T only feeds the transmittance AOV here: the first free flight's escape weight is an
         // unbiased estimate of it, so no separate walk through the media is needed.
