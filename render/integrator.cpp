@@ -252,7 +252,6 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
     counters.free_flights += vc.free_flights;
     counters.scattering_events += vc.scattering_events;
     counters.bounded_marches += vc.bounded_marches;
-    counters.bounded_marches += vc.bounded_marches;
     // Photon mapping adds the light scattered more than once from its volume map.
     if (const auto* photons = dynamic_cast<const PhotonGi*>(scene.gi()))
         v.radiance += photons->volume_radiance(scene, segment, rng);
