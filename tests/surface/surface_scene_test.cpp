@@ -341,5 +341,26 @@ TEST(SurfaceScene, ConcurrentQueriesAgreeAndCount) {
     EXPECT_EQ(scene.stats().shadow_rays, uint64_t(kRays) * kThreads);
 }
 
+/// The ray counters are per-thread shards, with one shard shared by every thread past the 63rd:
+/// 100 threads (ordinals are never reused, so at least 37 share the last shard), counting rays
+/// while the others do, still sum exactly.
+TEST(SurfaceScene, RayCountsExactWithManyThreads) {
+    const SurfaceScene scene(mixed_scene());
+    constexpr int kThreads = 100, kRays = 2000;
+    const Ray ray{Vec3(0.0f, 0.0f, -10.0f), Vec3(0.0f, 0.0f, 1.0f)};
+    std::vector<std::thread> threads;
+    for (int k = 0; k < kThreads; ++k)
+        threads.emplace_back([&] {
+            for (int i = 0; i < kRays; ++i) {
+                (void)scene.intersect(ray);
+                (void)scene.occluded(ray);
+            }
+        });
+    for (std::thread& t : threads)
+        t.join();
+    EXPECT_EQ(scene.stats().closest_rays, uint64_t(kRays) * kThreads);
+    EXPECT_EQ(scene.stats().shadow_rays, uint64_t(kRays) * kThreads);
+}
+
 }  // namespace
 }  // namespace kasumi
