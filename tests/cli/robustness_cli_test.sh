@@ -12,6 +12,15 @@ set -u
 kasumi="$1"
 src="$2"
 source "$(dirname "$0")/cli_lib.sh"
+# An AddressSanitizer build reserves terabytes of shadow memory, so it cannot run under an
+# address-space limit (`limited` then runs unlimited and the out-of-memory case is skipped), and
+# LeakSanitizer's exit-time tracer crashes (SIGSEGV, exit 1) after some multi-threaded renders
+# here; ASan and UBSan still check every run, the unit tests keep the leak check.
+sanitized=0
+if ldd "$kasumi" 2>/dev/null | grep -q libasan; then
+  sanitized=1
+  export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+fi
 
 out="$work/out"  # every failing command points its outputs here; it must stay empty
 mkdir -p "$out" "$work/s"
@@ -332,6 +341,10 @@ bounded() {
 limited() {
   local kb="$1"
   shift
+  if [ "$sanitized" -eq 1 ]; then
+    "$@"
+    return
+  fi
   printf '#!/usr/bin/env bash\nulimit -v %s\nexec "%s" "$@"\n' "$kb" "$kasumi" >"$work/limited.sh"
   chmod +x "$work/limited.sh"
   local real="$kasumi"
@@ -398,7 +411,9 @@ bad 4 "/: is a directory" render "$s/all.json" -o / -q
 bad 4 "out/: is a directory" render "$s/all.json" -o "$out/" -q
 bad 4 "is a directory" render "$s/all.json" -o "$out/a.exr" --preview "$work" -q
 # A film too large for memory (16384 x 16384 under a 2 GB address-space limit): exit 1 saying so.
-limited 2000000 bad 1 "out of memory" render "$s/all.json" --res 16384x16384 -o "$out/a.exr" -q
+if [ "$sanitized" -eq 0 ]; then
+  limited 2000000 bad 1 "out of memory" render "$s/all.json" --res 16384x16384 -o "$out/a.exr" -q
+fi
 # SIGINT during a render of 2^20 samples per pixel: cancellation is polled per sample, so the
 # render stops within a few seconds of the signal (not after a whole tile of such pixels), exits
 # 130 and leaves only complete files (written atomically: no temporary left behind).
