@@ -191,13 +191,13 @@ void add_render_command(CLI::App& root) {
                          static_cast<unsigned long long>(result.counters.nonfinite_samples));
         }
         if (result.counters.bounded_marches > 0) {
-            std::fprintf(stderr,
-                         "kasumi: warning: the march step (render.volume.step_m or step_voxels) "
-                         "%g m needed more than 65536 nodes on %llu camera rays: their step was "
-                         "lengthened to 1/65536 of their way through the media\n",
-                         static_cast<double>(
-                             march_step_m(runtime.media(), runtime.desc().render.volume)),
-                         static_cast<unsigned long long>(result.counters.bounded_marches));
+            std::fprintf(
+                stderr,
+                "kasumi: warning: the march step (render.volume.step_m or step_voxels) "
+                "%g m needed more than 65536 nodes on %llu camera rays: their step was "
+                "lengthened to 1/65536 of their way through the media\n",
+                static_cast<double>(march_step_m(runtime.media(), runtime.desc().render.volume)),
+                static_cast<unsigned long long>(result.counters.bounded_marches));
         }
         if (result.interrupted) {
             std::fprintf(stderr, "kasumi: interrupted; partial image written\n");

@@ -35,8 +35,9 @@ int main(int argc, char** argv) {
         return e.exit_code();
     } catch (const std::bad_alloc&) {
         // Not a bug but a request too large for this machine (a 16384x16384 film, a huge grid).
-        std::fprintf(stderr, "kasumi: out of memory: the scene, its files or the film (--res) "
-                             "need more memory than this machine has\n");
+        std::fprintf(stderr,
+                     "kasumi: out of memory: the scene, its files or the film (--res) "
+                     "need more memory than this machine has\n");
         return static_cast<int>(kasumi::ErrorKind::Runtime);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "kasumi: internal error: %s\n", e.what());

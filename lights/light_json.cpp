@@ -209,8 +209,8 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
     }
     if (const auto n = reader.optional("outline_probes")) {
         if (!std::holds_alternative<SphereLight>(light.emitter))
-            n->fail("outline_probes applies to sphere lights; this is a " +
-                    light_type_name(light) + " light");
+            n->fail("outline_probes applies to sphere lights; this is a " + light_type_name(light) +
+                    " light");
         const int64_t probes = n->as_int();
         if (probes != 0 && (probes < 4 || probes > 64))
             n->fail("must be 0 (off) or an integer in [4, 64]");

@@ -15,7 +15,7 @@ struct RenderOptions {
     uint32_t frame = 0;
     bool progress = true;
     const std::atomic<bool>* cancel =
-        nullptr;  ///< set asynchronously to stop after the current tiles
+        nullptr;              ///< set asynchronously to stop after the current tiles
     uint32_t aovs = kAovAll;  ///< FilmAov bits the film stores (only those can be written)
 };
 

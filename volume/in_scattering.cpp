@@ -1,8 +1,8 @@
 #include "volume/in_scattering.h"
 
 #include "volume/equiangular.h"
-#include "volume/march_walk.h"
 #include "volume/gauss_interpolant.h"
+#include "volume/march_walk.h"
 
 #include <array>
 #include <cmath>

@@ -87,21 +87,20 @@ bool walk_majorants(const MediumSet& media, const Ray& ray, Visit&& visit) {
         const Vec3 o_index(g->world_to_index * Vec4(ray.origin, 1.0f));
         const Vec3 d_index(g->world_to_index * Vec4(ray.direction, 0.0f));
         const Rgb sigma_t = g->sigma_t;
-        return g->grid->walk(o_index, d_index, span->first, span->second,
-                             [&](const BrickSpan& b, const BrickRef& brick) {
-                                 const MajorantSegment s{b.t0, b.t1, sigma_t * b.density_max,
-                                                         sigma_t * b.density_min, 1u};
-                                 if (!(max_component(s.sigma_max) * (b.t1 - b.t0) >
-                                       kDenseBrickDepth))
-                                     return visit(s, &brick);
-                                 return walk_brick_cells(
-                                     brick, o_index, d_index, b.t0, b.t1, b.density_max,
-                                     b.density_min, [&](float t0, float t1, float hi, float lo) {
-                                         return visit(MajorantSegment{t0, t1, sigma_t * hi,
-                                                                      sigma_t * lo, 1u},
-                                                      &brick);
-                                     });
-                             });
+        return g->grid->walk(
+            o_index, d_index, span->first, span->second,
+            [&](const BrickSpan& b, const BrickRef& brick) {
+                const MajorantSegment s{b.t0, b.t1, sigma_t * b.density_max,
+                                        sigma_t * b.density_min, 1u};
+                if (!(max_component(s.sigma_max) * (b.t1 - b.t0) > kDenseBrickDepth))
+                    return visit(s, &brick);
+                return walk_brick_cells(
+                    brick, o_index, d_index, b.t0, b.t1, b.density_max, b.density_min,
+                    [&](float t0, float t1, float hi, float lo) {
+                        return visit(MajorantSegment{t0, t1, sigma_t * hi, sigma_t * lo, 1u},
+                                     &brick);
+                    });
+            });
     }
     thread_local std::vector<MajorantSegment> segments;
     media.majorants(ray, segments);

@@ -221,8 +221,8 @@ VolumeResult march_single(const MediumSet& media, const std::vector<Light>& ligh
     VolumeResult result;
     if (segments.empty())
         return result;
-    const float h = bounded_march_step(march_step_m(media, settings), march_extent(segments),
-                                       counters);
+    const float h =
+        bounded_march_step(march_step_m(media, settings), march_extent(segments), counters);
     const Vec3 wo = -ray.direction;
     const bool grey = media.grey_extinction();
     thread_local std::vector<MarchLight> march_lights;

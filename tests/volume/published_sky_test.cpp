@@ -86,9 +86,10 @@ TEST(PublishedSun, AstmSpectrumLuminanceAndTheDefaultIlluminance) {
     // 683 lm/W x the integral of the ASTM G173-03 ETR spectrum times V(lambda) is the
     // luminous solar constant: 133.8 klx (Darula, Kittler & Gueymard 2005, Solar Energy 79,
     // 559, from the same Gueymard spectrum with 1 nm V). Our 10 nm bins on 360-830 nm give
-    // 133.2 klx, 0.5% less (132.5 klx, 1% less, with the bin means at their lower edges). The default illuminance_lux is the older, widely quoted 128 klx (e.g.
-    // Wikipedia, "Sunlight"), 4.3% below Darula's value: a documented choice (docs/sky.md);
-    // scenes set illuminance_lux for another.
+    // 133.2 klx, 0.5% less (132.5 klx, 1% less, with the bin means at their lower edges). The
+    // default illuminance_lux is the older, widely quoted 128 klx (e.g. Wikipedia,
+    // "Sunlight"), 4.3% below Darula's value: a documented choice (docs/sky.md); scenes set
+    // illuminance_lux for another.
     double y = 0.0;
     for (int i = 0; i < kCieSamples; ++i) {
         const double nm = kCieFirstNm + kCieStepNm * i;
