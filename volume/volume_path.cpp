@@ -23,6 +23,29 @@ constexpr float kTailTransmittance = 1e-4f;
 /// Paths play Russian roulette from this many scattering events on.
 constexpr int kRouletteDepth = 3;
 
+/// The next path vertex after a scattering event at `position`: a direction from the media's
+/// phase mixture (throughput times f / pdf), Russian roulette from kRouletteDepth events on, and
+/// the continued ray (ended at the environment's surface). False: the path ends.
+bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask, const Vec3& wo,
+                    int depth, const PathEnvironment* environment, Pcg32& rng, Rgb& throughput,
+                    Ray& ray) {
+    const float u_pick = rng.next_float();
+    const MixtureSample next = media.sample_scattering(position, mask, wo, u_pick, rng.next_vec2());
+    if (!(next.pdf > 0.0f))
+        return false;
+    throughput *= next.scattering / next.pdf;
+    if (depth >= kRouletteDepth) {
+        const float survive = std::min(1.0f, max_component(throughput));
+        if (!(rng.next_float() < survive))
+            return false;
+        throughput /= survive;
+    }
+    ray = Ray{position, next.wi, 0.0f, kInfinity};
+    if (environment != nullptr)
+        ray.t_max = environment->surface_distance(ray);
+    return true;
+}
+
 float mean(const Rgb& c) {
     return (c.r + c.g + c.b) * (1.0f / 3.0f);
 }
@@ -307,21 +330,9 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
                                                   flight.media_mask, wo, settings, rng, counters);
         if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth)
             break;
-        const float u_pick = rng.next_float();
-        const MixtureSample next = media.sample_scattering(flight.position, flight.media_mask, wo,
-                                                           u_pick, rng.next_vec2());
-        if (!(next.pdf > 0.0f))
+        if (!scatter_onward(media, flight.position, flight.media_mask, wo, depth, environment, rng,
+                            throughput, ray))
             break;
-        throughput *= next.scattering / next.pdf;
-        if (depth >= kRouletteDepth) {
-            const float survive = std::min(1.0f, max_component(throughput));
-            if (!(rng.next_float() < survive))
-                break;
-            throughput /= survive;
-        }
-        ray = Ray{flight.position, next.wi, 0.0f, kInfinity};
-        if (environment != nullptr)
-            ray.t_max = environment->surface_distance(ray);
     }
     return radiance;
 }
@@ -410,21 +421,8 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         }
         ++depth;
         throughput *= flight_weight;
-        const float u_pick = rng.next_float();
-        const MixtureSample next =
-            media.sample_scattering(position, mask, wo, u_pick, rng.next_vec2());
-        if (!(next.pdf > 0.0f))
+        if (!scatter_onward(media, position, mask, wo, depth, environment, rng, throughput, ray))
             break;
-        throughput *= next.scattering / next.pdf;
-        if (depth >= kRouletteDepth) {
-            const float survive = std::min(1.0f, max_component(throughput));
-            if (!(rng.next_float() < survive))
-                break;
-            throughput /= survive;
-        }
-        ray = Ray{position, next.wi, 0.0f, kInfinity};
-        if (environment != nullptr)
-            ray.t_max = environment->surface_distance(ray);
     }
     return radiance;
 }
