@@ -1,6 +1,7 @@
 #include "lights/light_json.h"
 
 #include "core/error.h"
+#include "core/json_int.h"
 
 #include <filesystem>
 
@@ -130,29 +131,22 @@ SphereLight parse_sphere(JsonObjectReader& reader, const Rgb& color) {
     return l;
 }
 
-int read_int_in(const JsonNode& node, int lo, int hi) {
-    const int64_t v = node.as_int();
-    if (v < lo || v > hi)
-        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<int>(v);
-}
-
 void parse_shadow_map_settings(const JsonNode& node, Light& light) {
     JsonObjectReader reader(node);
     ShadowMapSettings& m = light.shadow_map;
     if (const auto r = reader.optional("resolution"))
-        m.resolution = read_int_in(*r, 16, 8192);
+        m.resolution = parse_int_in(*r, 16, 8192);
     if (const auto b = reader.optional("bias"))
         m.bias = b->non_negative();
     if (const auto b = reader.optional("slope_bias"))
         m.slope_bias = b->non_negative();
     if (const auto r = reader.optional("pcf_radius"))
-        m.pcf_radius = read_int_in(*r, 0, 8);
+        m.pcf_radius = parse_int_in(*r, 0, 8);
     if (const auto v = reader.optional("views")) {
         if (is_delta(light))
             v->fail("views applies to line, polygon and sphere lights; a " +
                     light_type_name(light) + " light has one centre of projection");
-        m.views = read_int_in(*v, 1, 64);
+        m.views = parse_int_in(*v, 1, 64);
     }
     // Every view of a point-like or area light may be a cube of six faces; cap the memory.
     const int64_t res = shadow_map_resolution(light);

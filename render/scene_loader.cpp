@@ -1,6 +1,7 @@
 #include "render/scene_loader.h"
 
 #include "core/error.h"
+#include "core/json_int.h"
 #include "lights/light_json.h"
 #include "render/animation.h"
 #include "render/quality.h"
@@ -43,14 +44,6 @@ CameraDesc parse_camera(const JsonNode& node) {
         node.fail("up must not be parallel to the view direction");
     }
     return camera;
-}
-
-int parse_int_in(const JsonNode& node, int64_t lo, int64_t hi) {
-    const int64_t v = node.as_int();
-    if (v < lo || v > hi) {
-        node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    }
-    return static_cast<int>(v);
 }
 
 FilmDesc parse_film(const JsonNode& node) {

@@ -1,5 +1,6 @@
 #include "volume/sky_settings.h"
 
+#include "core/json_int.h"
 #include "volume/atmosphere.h"
 
 namespace kasumi {
@@ -29,19 +30,12 @@ void parse_sky_render_keys(JsonObjectReader& render, SkySettings& sky) {
             else
                 m->fail("expected \"table\" or \"march\"");
         }
-        auto read_int = [](const JsonNode& n, int lo, int hi) {
-            const int64_t x = n.as_int();
-            if (x < lo || x > hi)
-                n.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                       "]");
-            return static_cast<int>(x);
-        };
         if (const auto o = reader.optional("orders"))
-            sky.orders = read_int(*o, 1, 64);
+            sky.orders = parse_int_in(*o, 1, 64);
         if (const auto s = reader.optional("view_steps"))
-            sky.view_steps = read_int(*s, 4, 4096);
+            sky.view_steps = parse_int_in(*s, 4, 4096);
         if (const auto s = reader.optional("sun_steps"))
-            sky.sun_steps = read_int(*s, 4, 4096);
+            sky.sun_steps = parse_int_in(*s, 4, 4096);
         if (const auto s = reader.optional("shafts"))
             sky.shafts = s->as_bool();
         if (const auto s = reader.optional("shaft_distance_m")) {
@@ -50,7 +44,7 @@ void parse_sky_render_keys(JsonObjectReader& render, SkySettings& sky) {
                 s->fail("must be a distance in (0, 1e6] m");
         }
         if (const auto s = reader.optional("shaft_samples"))
-            sky.shaft_samples = read_int(*s, 1, 1024);
+            sky.shaft_samples = parse_int_in(*s, 1, 1024);
         reader.finish();
     }
     if (const auto v = render.optional("spectral")) {
