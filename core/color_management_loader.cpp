@@ -3,8 +3,6 @@
 #include "core/module_loader.h"
 #include "core/ocio_module.h"
 
-#include <mutex>
-
 #ifndef KASUMI_OCIO_MODULE_BUILD_PATH
 #define KASUMI_OCIO_MODULE_BUILD_PATH ""
 #endif
@@ -14,19 +12,14 @@ namespace kasumi {
 namespace {
 
 const OcioModuleApi& ocio_module() {
-    static const OcioModuleApi* api = nullptr;
-    static std::once_flag once;
-    std::call_once(once, [] {
-        const ModuleSpec spec{"OpenColorIO module",
-                              "for PNG previews and display transforms",
-                              kOcioModuleFile,
-                              "KASUMI_OCIO_MODULE",
-                              KASUMI_OCIO_MODULE_BUILD_PATH,
-                              kOcioModuleEntry,
-                              kOcioModuleAbi};
-        api = static_cast<const OcioModuleApi*>(load_module(spec));  // throws: tried again later
-    });
-    return *api;
+    static const ModuleSpec spec{"OpenColorIO module",
+                                 "for PNG previews and display transforms",
+                                 kOcioModuleFile,
+                                 "KASUMI_OCIO_MODULE",
+                                 KASUMI_OCIO_MODULE_BUILD_PATH,
+                                 kOcioModuleEntry,
+                                 kOcioModuleAbi};
+    return module_api<OcioModuleApi>(spec);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 /// Loading the project's own shared modules (volume/vdb_module.h: OpenVDB; core/ocio_module.h:
 /// OpenColorIO) with dlopen on first use, so a process that does not need a heavy library never
 /// pays for binding its symbols.
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,17 @@ std::vector<std::string> module_search_paths(const ModuleSpec& spec);
 
 /// Loads the first module found (RTLD_NOW | RTLD_LOCAL; never closed) and returns what its entry
 /// returned. Throws Error (Runtime, exit code 1) naming every path tried and why it failed. Not
-/// cached: callers keep the result (see vdb_io.cpp).
+/// cached: callers call it through module_api.
 const void* load_module(const ModuleSpec& spec);
+
+/// The module's API, loaded by the first call (thread-safe) and kept for the process; one module
+/// per API type. A call that throws leaves it unloaded, so the next call tries again.
+template <class Api>
+const Api& module_api(const ModuleSpec& spec) {
+    static const Api* api = nullptr;
+    static std::once_flag once;
+    std::call_once(once, [&spec] { api = static_cast<const Api*>(load_module(spec)); });
+    return *api;
+}
 
 }  // namespace kasumi

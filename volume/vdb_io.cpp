@@ -4,8 +4,6 @@
 
 #include "core/module_loader.h"
 
-#include <mutex>
-
 #ifndef KASUMI_VDB_MODULE_BUILD_PATH
 #define KASUMI_VDB_MODULE_BUILD_PATH ""
 #endif
@@ -15,15 +13,11 @@ namespace kasumi {
 namespace {
 
 const VdbModuleApi& vdb_module() {
-    static const VdbModuleApi* api = nullptr;
-    static std::once_flag once;
-    std::call_once(once, [] {
-        const ModuleSpec spec{"OpenVDB module",    "to read or write .vdb files", kVdbModuleFile,
-                              "KASUMI_VDB_MODULE", KASUMI_VDB_MODULE_BUILD_PATH,  kVdbModuleEntry,
-                              kVdbModuleAbi};
-        api = static_cast<const VdbModuleApi*>(load_module(spec));  // throws: tried again later
-    });
-    return *api;
+    static const ModuleSpec spec{
+        "OpenVDB module",    "to read or write .vdb files", kVdbModuleFile,
+        "KASUMI_VDB_MODULE", KASUMI_VDB_MODULE_BUILD_PATH,  kVdbModuleEntry,
+        kVdbModuleAbi};
+    return module_api<VdbModuleApi>(spec);
 }
 
 }  // namespace
