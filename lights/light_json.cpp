@@ -210,6 +210,14 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
             n->fail("must be 0 (off) or an integer in [4, 64]");
         light.outline_probes = static_cast<int>(probes);
     }
+    if (const auto e = reader.optional("exact_penumbra")) {
+        if (!std::holds_alternative<SphereLight>(light.emitter))
+            e->fail("exact_penumbra applies to sphere lights; this is a " +
+                    light_type_name(light) + " light");
+        if (light.shadows != ShadowMode::Ray)
+            e->fail("exact_penumbra applies to ray-traced shadows (\"shadows\": \"ray\")");
+        light.exact_penumbra = e->as_bool();
+    }
 }
 
 }  // namespace

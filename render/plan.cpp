@@ -95,6 +95,10 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
                                 ? ", " + std::to_string(light.outline_probes) +
                                       " outline probes decide lit and umbra points (biased, "
                                       "bounded)"
+                                : "") +
+                           (light.exact_penumbra
+                                ? ", exact penumbra against spheres, boxes and quads where the "
+                                  "closed form applies (sampled elsewhere)"
                                 : ""));
         if (light.shadows == ShadowMode::Map)
             maps.push_back(light.name + ": " + describe_shadow_maps(light));

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "surface/box_faces.h"
 #include "surface/ray_sphere.h"
+#include "surface/sphere_light_occluders.h"
 
 #include <embree3/rtcore.h>
 
@@ -199,6 +200,7 @@ struct SurfaceScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<Geometry> geometries;
+    std::unique_ptr<SphereLightOccluders> occluders;
     uint64_t primitives = 0;
     Bounds3 bounds;
     /// Ray counts, one cache line per thread: thread k < kShards - 1 alone writes shard k, with
@@ -264,6 +266,7 @@ SurfaceScene::SurfaceScene(const std::vector<Shape>& shapes) : m_impl(std::make_
                     "Embree was built with back-face culling; kasumi "
                     "needs hits on both sides of a surface");
 
+    impl.occluders = std::make_unique<SphereLightOccluders>(shapes);
     impl.scene = rtcNewScene(impl.device);
     rtcSetSceneFlags(impl.scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(impl.scene, RTC_BUILD_QUALITY_HIGH);
@@ -432,6 +435,10 @@ bool SurfaceScene::occluded(const Ray& ray) const {
 
 Bounds3 SurfaceScene::bounds() const {
     return m_impl->bounds;
+}
+
+const SphereLightOccluders& SurfaceScene::sphere_light_occluders() const {
+    return *m_impl->occluders;
 }
 
 SurfaceStats SurfaceScene::stats() const {

@@ -44,6 +44,8 @@ struct HitTriangle {
     std::array<Vec3, 3> normals;
 };
 
+class SphereLightOccluders;
+
 struct SurfaceStats {
     uint64_t closest_rays = 0;
     uint64_t shadow_rays = 0;
@@ -66,6 +68,8 @@ class SurfaceScene {
 
     Bounds3 bounds() const;
     SurfaceStats stats() const;
+    /// The shapes as analytic occluders of sphere lights (`exact_penumbra`).
+    const SphereLightOccluders& sphere_light_occluders() const;
 
   private:
     struct Impl;

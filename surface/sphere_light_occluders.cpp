@@ -1,0 +1,215 @@
+#include "surface/sphere_light_occluders.h"
+
+#include "lights/cap_region.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kasumi {
+
+namespace {
+
+/// Silhouette caps of one occluder: a sphere has 1, a box 4 or 6, a quad 4.
+constexpr int kMaxCapsPerOccluder = 6;
+
+/// The hemisphere of directions on the side of the plane through p, u and v that holds
+/// `inside` (a point of the convex occluder off that plane). False when p is on the line uv.
+bool edge_hemisphere(const DVec3& p, const DVec3& u, const DVec3& v, const DVec3& inside,
+                     SphericalCap& cap) {
+    DVec3 axis = glm::cross(u - p, v - p);
+    const double length = glm::length(axis);
+    const double scale = glm::length(u - p) * glm::length(v - p);
+    if (!(length > 1e-12 * scale))
+        return false;
+    axis /= length;
+    if (glm::dot(axis, inside - p) < 0.0)
+        axis = -axis;
+    cap = SphericalCap{axis, 0.0, 1.0};
+    return true;
+}
+
+}  // namespace
+
+SphereLightOccluders::SphereLightOccluders(const std::vector<Shape>& shapes) {
+    m_occluders.reserve(shapes.size());
+    for (const Shape& shape : shapes) {
+        Occluder o;
+        DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+        const auto extend = [&](const Vec3& v) {
+            lo = glm::min(lo, DVec3(v));
+            hi = glm::max(hi, DVec3(v));
+        };
+        if (const auto* s = std::get_if<SphereShape>(&shape.geometry)) {
+            o.kind = Kind::Sphere;
+            o.center = DVec3(s->center);
+            o.radius = s->radius;
+            m_occluders.push_back(o);
+            continue;
+        }
+        if (const auto* b = std::get_if<BoxShape>(&shape.geometry)) {
+            o.kind = Kind::Box;
+            extend(b->min);
+            extend(b->max);
+        } else if (const auto* q = std::get_if<QuadShape>(&shape.geometry)) {
+            o.kind = Kind::Quad;
+            for (int k = 0; k < 4; ++k) {
+                o.quad[k] = DVec3(q->vertices[k]);
+                extend(q->vertices[k]);
+            }
+        } else if (const auto* m = std::get_if<MeshShape>(&shape.geometry)) {
+            for (const Vec3& v : m->mesh.positions)
+                extend(v);
+            if (m->mesh.positions.empty())
+                lo = hi = DVec3(0.0);
+        }
+        o.lo = lo;
+        o.hi = hi;
+        o.center = 0.5 * (lo + hi);
+        o.radius = 0.5 * glm::length(hi - lo);
+        if (o.kind == Kind::Quad) {
+            // The vertex centroid lies inside a convex quad (the box centre may not): the
+            // edge planes are oriented toward it.
+            o.center = 0.25 * (o.quad[0] + o.quad[1] + o.quad[2] + o.quad[3]);
+            o.radius = 0.0;
+            for (const DVec3& v : o.quad)
+                o.radius = std::max(o.radius, glm::length(v - o.center));
+        }
+        m_occluders.push_back(o);
+    }
+}
+
+std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const SphereLight& light,
+                                                                          const Vec3& p_in,
+                                                                          const Vec3& n_in,
+                                                                          uint32_t receiver) const {
+    const DVec3 p(p_in), n(n_in);
+    const DVec3 to_light = DVec3(light.center) - p;
+    const double d = glm::length(to_light);
+    const double radius = light.radius;
+    if (!(d > radius))
+        return 0.0;
+    const DVec3 axis = to_light / d;
+    const double sin_sigma = radius / d;
+    const double cos_sigma = std::sqrt(std::max(0.0, 1.0 - sin_sigma * sin_sigma));
+    const double n_axis = glm::dot(n, axis);
+    if (!(n_axis > sin_sigma))
+        return std::nullopt;  // the cone reaches the horizon of n
+    const double unshadowed = kPiD * sin_sigma * sin_sigma * n_axis;
+    const double sigma = std::asin(sin_sigma);
+    // Every direction of the cone meets the light between these distances (the nearest point,
+    // on the axis, and the rim, where the cone grazes the sphere).
+    const double nearest = d - radius;
+    const double farthest = std::sqrt((d - radius) * (d + radius));
+
+    SphericalCap occluder_caps[kMaxOccluders][kMaxCapsPerOccluder];
+    int cap_count[kMaxOccluders] = {};
+    int occluders = 0;
+    for (size_t k = 0; k < m_occluders.size(); ++k) {
+        const Occluder& o = m_occluders[k];
+        if (k == receiver && o.kind != Kind::Mesh)
+            continue;
+        const DVec3 to_center = o.center - p;
+        const double dist = glm::length(to_center);
+        if (dist > o.radius) {
+            // Cone against the bounding sphere's cone: disjoint when the axes are farther
+            // apart than the two half-angles.
+            const double cos_apart = std::clamp(glm::dot(axis, to_center) / dist, -1.0, 1.0);
+            if (std::acos(cos_apart) >= sigma + std::asin(o.radius / dist))
+                continue;
+            if (dist - o.radius >= farthest)
+                continue;  // wholly beyond the visible side of the light
+        }
+        if (o.kind == Kind::Mesh)
+            return std::nullopt;
+        // The occluder's nearest and farthest points from p (bounds for quads).
+        double s_min = dist - o.radius, s_max = dist + o.radius;
+        if (o.kind == Kind::Box) {
+            const DVec3 nearest_point = glm::clamp(p, o.lo, o.hi);
+            s_min = glm::length(nearest_point - p);
+            const DVec3 far_corner(p.x < o.center.x ? o.hi.x : o.lo.x,
+                                   p.y < o.center.y ? o.hi.y : o.lo.y,
+                                   p.z < o.center.z ? o.hi.z : o.lo.z);
+            s_max = glm::length(far_corner - p);
+        } else if (o.kind == Kind::Quad) {
+            s_max = 0.0;
+            for (const DVec3& v : o.quad)
+                s_max = std::max(s_max, glm::length(v - p));
+        }
+        if (s_min >= farthest)
+            continue;
+        if (s_max > nearest || occluders == kMaxOccluders)
+            return std::nullopt;
+        SphericalCap* caps = occluder_caps[occluders];
+        int& count = cap_count[occluders];
+        if (o.kind == Kind::Sphere) {
+            if (!(dist > o.radius))
+                return std::nullopt;
+            const double sin_beta = o.radius / dist;
+            caps[count++] = SphericalCap{
+                to_center / dist, std::sqrt(std::max(0.0, 1.0 - sin_beta * sin_beta)), sin_beta};
+        } else if (o.kind == Kind::Box) {
+            // Face (axis i, side s) faces p when p is beyond its plane; a silhouette edge joins
+            // a face that faces p and one that does not.
+            bool front[3][2];
+            bool any_front = false;
+            for (int i = 0; i < 3; ++i) {
+                front[i][0] = p[i] < o.lo[i];
+                front[i][1] = p[i] > o.hi[i];
+                any_front = any_front || front[i][0] || front[i][1];
+            }
+            if (!any_front)
+                return std::nullopt;  // p inside or on the box
+            for (int e = 0; e < 3; ++e) {
+                const int i = (e + 1) % 3, j = (e + 2) % 3;
+                for (int si = 0; si < 2; ++si)
+                    for (int sj = 0; sj < 2; ++sj) {
+                        if (front[i][si] == front[j][sj])
+                            continue;
+                        DVec3 u, v;
+                        u[i] = v[i] = si ? o.hi[i] : o.lo[i];
+                        u[j] = v[j] = sj ? o.hi[j] : o.lo[j];
+                        u[e] = o.lo[e];
+                        v[e] = o.hi[e];
+                        if (count == kMaxCapsPerOccluder ||
+                            !edge_hemisphere(p, u, v, o.center, caps[count++]))
+                            return std::nullopt;
+                    }
+            }
+        } else {
+            const DVec3 normal = glm::cross(o.quad[1] - o.quad[0], o.quad[2] - o.quad[0]);
+            const double height = glm::dot(normal, p - o.quad[0]);
+            if (std::abs(height) <= 1e-12 * glm::length(normal) * (dist + o.radius))
+                continue;  // p in the quad's plane: it subtends no solid angle
+            for (int v = 0; v < 4; ++v)
+                if (!edge_hemisphere(p, o.quad[v], o.quad[(v + 1) % 4], o.center, caps[count++]))
+                    return std::nullopt;
+        }
+        ++occluders;
+    }
+    if (occluders == 0)
+        return unshadowed;
+
+    // Inclusion-exclusion over the occluders: the measure of (cone ∩ ∪ O_k).
+    SphericalCap caps[1 + kMaxOccluders * kMaxCapsPerOccluder];
+    caps[0] = SphericalCap{axis, cos_sigma, sin_sigma};
+    double hidden = 0.0;
+    for (unsigned mask = 1; mask < (1u << occluders); ++mask) {
+        size_t count = 1;
+        int members = 0;
+        for (int k = 0; k < occluders; ++k) {
+            if (!(mask & (1u << k)))
+                continue;
+            ++members;
+            for (int c = 0; c < cap_count[k]; ++c)
+                caps[count++] = occluder_caps[k][c];
+        }
+        const double term = cap_intersection_projected_solid_angle(caps, count, n);
+        if (!std::isfinite(term))
+            return std::nullopt;
+        hidden += (members % 2 == 1) ? term : -term;
+    }
+    return std::clamp(unshadowed - hidden, 0.0, unshadowed);
+}
+
+}  // namespace kasumi

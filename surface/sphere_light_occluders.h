@@ -1,0 +1,55 @@
+#pragma once
+/// Exact penumbrae of sphere lights (`exact_penumbra`, docs/lights.md "Exact penumbrae"): the
+/// projected solid angle of the part of a sphere light a point sees past the scene's spheres,
+/// boxes and quads, in closed form, or nothing when the configuration is outside what the
+/// closed form covers (the caller then samples the light as usual).
+#include "lights/sphere_light.h"
+#include "surface/shape.h"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace kasumi {
+
+class SphereLightOccluders {
+  public:
+    /// At most this many occluders may overlap a point's cone of the light (inclusion-exclusion
+    /// over their 2^k − 1 intersections); more, and the point falls back to sampling.
+    static constexpr int kMaxOccluders = 4;
+
+    explicit SphereLightOccluders(const std::vector<Shape>& shapes);
+
+    /// ∫ n · ω dω over the directions of the light's cone at p that reach the light (sr): the
+    /// unshadowed value π sin²σ (n · axis) less the measure of the union of the occluders'
+    /// solid angles inside the cone, each occluder a sphere (a cap), an axis-aligned box or a
+    /// quad (convex spherical polygons, bounded by the great circles through p and their
+    /// silhouette edges), the union by inclusion-exclusion; every region is an intersection of
+    /// caps (lights/cap_region.h). E = L × this. `receiver` is the shape p lies on: skipped
+    /// when it is a sphere, box or quad (a convex surface hides nothing above its tangent
+    /// plane). Returns nothing, so the caller samples, when:
+    /// - the cone is not wholly above the plane of n (the cosine would be clipped),
+    /// - a mesh's bounding sphere meets the cone (meshes are not silhouetted),
+    /// - an occluder straddles the light's distance (parts of it nearer than the nearest point
+    ///   of the light, d − R, and parts farther: then it would hide the light only in part of
+    ///   its solid angle); occluders wholly beyond √(d² − R²), the farthest visible point of
+    ///   the light, are ignored,
+    /// - p is inside (or on) an occluder, or on the line of a box or quad edge,
+    /// - more than kMaxOccluders occluders meet the cone.
+    /// Zero when p is inside the light.
+    std::optional<double> visible_projected_solid_angle(const SphereLight& light, const Vec3& p,
+                                                        const Vec3& n, uint32_t receiver) const;
+
+  private:
+    enum class Kind : uint8_t { Sphere, Box, Quad, Mesh };
+    struct Occluder {
+        Kind kind = Kind::Mesh;
+        DVec3 center{0.0};  ///< of the bounding sphere (the sphere itself for spheres)
+        double radius = 0.0;
+        DVec3 lo{0.0}, hi{0.0};       ///< boxes
+        std::array<DVec3, 4> quad{};  ///< quads, as given
+    };
+    std::vector<Occluder> m_occluders;
+};
+
+}  // namespace kasumi
