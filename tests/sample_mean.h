@@ -1,5 +1,7 @@
 #pragma once
 // Shared by the statistical tests: the mean of independent samples and its standard error.
+#include "core/rng.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -30,5 +32,17 @@ class SampleMean {
     double m_sum = 0.0, m_sum_sq = 0.0;
     int64_t m_n = 0;
 };
+
+/// The mean of n samples `sample(rng)`, sample i drawn from its own stream Pcg32(seed, i), so
+/// the result does not depend on how many draws a sample takes.
+template <typename Sample>
+MeanAndError mean_over_streams(int n, uint64_t seed, Sample&& sample) {
+    SampleMean m;
+    for (int i = 0; i < n; ++i) {
+        Pcg32 rng(seed, static_cast<uint64_t>(i));
+        m.add(sample(rng));
+    }
+    return m.result();
+}
 
 }  // namespace kasumi

@@ -4,6 +4,8 @@
 // with shadows, and it is unbiased wherever the control fits badly.
 #include "phase/henyey_greenstein.h"
 #include "phase/rayleigh.h"
+#include "sun_airlight.h"
+#include "tests/sample_mean.h"
 #include "volume/gauss_interpolant.h"
 #include "volume/in_scattering.h"
 
@@ -67,66 +69,30 @@ struct Mean {
 };
 
 Mean average(int n, uint64_t seed, const std::function<double(Pcg32&)>& sample) {
-    double sum = 0.0, sum_sq = 0.0;
-    for (int i = 0; i < n; ++i) {
-        Pcg32 rng(seed, static_cast<uint64_t>(i));
-        const double x = sample(rng);
-        sum += x;
-        sum_sq += x * x;
-    }
+    const MeanAndError r = mean_over_streams(n, seed, sample);
     Mean m;
-    m.mean = sum / n;
-    m.sd = std::sqrt(std::max(0.0, sum_sq / n - m.mean * m.mean) * n / (n - 1));
-    m.stderr_ = m.sd / std::sqrt(static_cast<double>(n));
+    m.mean = r.mean;
+    m.stderr_ = r.stderr_;
+    m.sd = r.stderr_ * std::sqrt(static_cast<double>(n));
     return m;
 }
 
-/// F(u, v) = ∫_0^v exp(-u tan xi) dxi by Simpson's rule (Sun et al. 2005, eq. 5).
-double sun_f(double u, double v) {
-    const int n = 20000;
-    const double h = v / n;
-    double s = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        const double f = std::exp(-u * std::tan(i * h));
-        s += (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0)) * f;
-    }
-    return s * h / 3.0;
-}
-
 TEST(AirlightControl, UnshadowedPointLightMatchesSunEtAl2005) {
-    // Sun, Ramamoorthi, Narasimhan & Nayar 2005, "A Practical Analytic Single Scattering Model
-    // for Real Time Rendering", ACM TOG 24(3), eqs. 3-5: isotropic point light of intensity I at
-    // distance D_sv from the viewer, purely scattering medium beta, isotropic phase, view ray
-    // at angle gamma from the light's direction, of length D_vp:
-    //   L = A0 [F(A1, pi/4 + atan((T_vp - T_sv cos g) / (T_sv sin g)) / 2) - F(A1, g/2)],
-    //   A0 = beta^2 I exp(-T_sv cos g) / (2 pi T_sv sin g), A1 = T_sv sin g, T = beta D.
-    // The default estimator (march + single) with the control variate, 0.5 m budget steps.
-    const double beta = 0.4, intensity = 100.0, d_sv = 2.0;
-    const MediumSet fog(
-        {Medium{"fog", HomogeneousMedium{std::nullopt, Rgb(0.0f), Rgb(static_cast<float>(beta)),
-                                         Isotropic{}}}});
-    const std::vector<Light> lamp{
-        Light{"lamp", PointLight{Vec3(0.0f, 0.0f, static_cast<float>(-d_sv)), Rgb(100.0f)}}};
+    // The closed form of Sun et al. 2005 (sun_airlight.h) by the default estimator (march +
+    // single) with the control variate, 0.5 m budget steps.
+    const test::SunAirlight scene;
     struct Case {
         double gamma_deg, d_vp;
     };
     for (const Case c : {Case{30.0, kInfinity}, Case{75.0, kInfinity}, Case{120.0, kInfinity},
                          Case{50.0, 3.0}, Case{5.0, 8.0}}) {
-        const double g = c.gamma_deg * kPiD / 180.0;
-        const Ray ray{Vec3(0.0f),
-                      Vec3(static_cast<float>(std::sin(g)), 0.0f, static_cast<float>(-std::cos(g))),
-                      0.0f, static_cast<float>(c.d_vp)};
-        const double t_sv = beta * d_sv, a1 = t_sv * std::sin(g);
-        const double upper =
-            c.d_vp >= kInfinity
-                ? kPiD / 2.0
-                : kPiD / 4.0 + 0.5 * std::atan((beta * c.d_vp - t_sv * std::cos(g)) / a1);
-        const double expected = beta * beta * intensity * std::exp(-t_sv * std::cos(g)) /
-                                (2.0 * kPiD * a1) * (sun_f(a1, upper) - sun_f(a1, g / 2.0));
+        const Ray ray = test::SunAirlight::ray(c.gamma_deg, c.d_vp);
+        const double expected = test::SunAirlight::radiance(c.gamma_deg, c.d_vp);
         const VolumeSettings settings{0.5f};
         const Mean l = average(2000, 5, [&](Pcg32& rng) {
             VolumeCounters counters;
-            return integrate_volume(fog, lamp, nullptr, ray, settings, true, rng, counters)
+            return integrate_volume(scene.fog, scene.lamp, nullptr, ray, settings, true, rng,
+                                    counters)
                 .radiance.g;
         });
         // 0.5% (issue #8's bound), within 4 standard errors (false failure ~6e-5 per case);

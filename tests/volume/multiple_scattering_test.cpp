@@ -2,9 +2,11 @@
 // semi-infinite isotropic medium (Chandrasekhar's H-function), and single scattering of a
 // point light in fog (the airlight integral of Sun et al. 2005).
 #include "core/sampling.h"
+#include "sun_airlight.h"
 #include "tests/sample_mean.h"
 #include "vdb_test_grids.h"
 #include "volume/volume_path.h"
+#include "white_furnace.h"
 
 #include <gtest/gtest.h>
 
@@ -14,26 +16,10 @@
 namespace kasumi {
 namespace {
 
-/// Paths that leave the media see a uniform background (no surfaces).
-class UniformBackground final : public PathEnvironment {
-  public:
-    explicit UniformBackground(Rgb radiance) : m_radiance(radiance) {}
-    float surface_distance(const Ray&) const override { return kInfinity; }
-    Rgb radiance(const Ray&, Pcg32&) const override { return m_radiance; }
-
-  private:
-    Rgb m_radiance;
-};
-
 using Mean = MeanAndError;
 
 Mean average(int n, const std::function<double(Pcg32&)>& sample) {
-    SampleMean m;
-    for (int i = 0; i < n; ++i) {
-        Pcg32 rng(17, static_cast<uint64_t>(i));
-        m.add(sample(rng));
-    }
-    return m.result();
+    return mean_over_streams(n, 17, sample);
 }
 
 VolumeSettings multiple(Estimator estimator) {
@@ -44,33 +30,16 @@ VolumeSettings multiple(Estimator estimator) {
     return s;
 }
 
-/// L = L_volume + T * L_background for a camera ray ending nowhere.
-double furnace_radiance(const MediumSet& media, const VolumeSettings& settings, const Ray& ray,
-                        Pcg32& rng) {
-    const UniformBackground background(Rgb(1.0f));
-    VolumeCounters counters;
-    const VolumeResult v =
-        integrate_media(media, {}, nullptr, &background, ray, settings, true, rng, counters);
-    return v.radiance.g + v.transmittance.g;
-}
-
 TEST(WhiteFurnace, AlbedoOneMediaReturnTheEnvironment) {
     // Energy conservation: with albedo 1 and a uniform environment of radiance 1, every path
     // carries weight 1 whatever its length, so L = 1 exactly in expectation.
-    const std::string box = test::write_box("furnace", 16, 1.0f, 0.25);
-    const MediumSet grid({test::vdb_medium(
-        box, {{"density_scale", 3.0}, {"albedo", 1.0}, {"phase", {{"model", "hg"}, {"g", 0.6}}}})});
-    const MediumSet fog({Medium{"fog", HomogeneousMedium{Bounds3{Vec3(-1.0f), Vec3(1.0f)},
-                                                         Rgb(0.0f), Rgb(4.0f), Isotropic{}}}});
-    const Ray inside_grid{Vec3(2.0f, 1.9f, 2.1f), glm::normalize(Vec3(1, 0.3f, -0.2f)), 0.0f,
-                          kInfinity};
-    const Ray inside_fog{Vec3(0.1f, 0.2f, 0.0f), glm::normalize(Vec3(-1, 0.5f, 0.2f)), 0.0f,
-                         kInfinity};
+    const test::WhiteFurnace furnace("furnace");
     for (Estimator e : {Estimator::Delta, Estimator::Ratio, Estimator::ResidualRatio}) {
-        for (const auto& [media, ray] :
-             {std::pair{&grid, inside_grid}, std::pair{&fog, inside_fog}}) {
-            const Mean l = average(
-                4000, [&](Pcg32& rng) { return furnace_radiance(*media, multiple(e), ray, rng); });
+        for (const auto& [media, ray] : {std::pair{&furnace.grid, furnace.inside_grid},
+                                         std::pair{&furnace.fog, furnace.inside_fog}}) {
+            const Mean l = average(4000, [&](Pcg32& rng) {
+                return test::WhiteFurnace::radiance(*media, multiple(e), ray, rng);
+            });
             // 4 standard errors; the bound has teeth (a 2% loss fails).
             EXPECT_NEAR(l.mean, 1.0, 4.0 * l.stderr_ + 1e-6);
             EXPECT_LT(4.0 * l.stderr_, 0.02);
@@ -160,54 +129,22 @@ TEST(SemiInfinite, PlaneAlbedoMatchesChandrasekhar) {
     }
 }
 
-/// F(u, v) = int_0^v exp(-u tan xi) dxi (Sun et al. 2005, eq. 5), by Simpson's rule.
-double sun_f(double u, double v) {
-    const int n = 20000;
-    const double h = v / n;
-    double s = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        const double f = std::exp(-u * std::tan(i * h));
-        s += (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0)) * f;
-    }
-    return s * h / 3.0;
-}
-
 TEST(Airlight, PointLightInFogMatchesSunEtAl2005) {
-    // Sun, Ramamoorthi, Narasimhan & Nayar 2005, "A Practical Analytic Single Scattering Model
-    // for Real Time Rendering", ACM TOG 24(3), eqs. 3-5: an isotropic point light of intensity
-    // I at distance D_sv from the viewer, in a purely scattering medium of coefficient beta
-    // with isotropic phase, seen at angle gamma from the light's direction, over a view ray of
-    // length D_vp:
-    //   L = A0 [F(A1, pi/4 + atan((T_vp - T_sv cos g) / (T_sv sin g)) / 2) - F(A1, g/2)],
-    //   A0 = beta^2 I exp(-T_sv cos g) / (2 pi T_sv sin g), A1 = T_sv sin g, T = beta D,
-    // with the upper limit pi/2 for an endless ray.
-    const double beta = 0.4, intensity = 100.0, d_sv = 2.0;
-    const MediumSet fog(
-        {Medium{"fog", HomogeneousMedium{std::nullopt, Rgb(0.0f), Rgb(static_cast<float>(beta)),
-                                         Isotropic{}}}});
-    const std::vector<Light> lamp{
-        Light{"lamp", PointLight{Vec3(0.0f, 0.0f, static_cast<float>(-d_sv)), Rgb(100.0f)}}};
+    // The closed form of Sun et al. 2005 (sun_airlight.h) by residual ratio tracking.
+    const test::SunAirlight scene;
     struct Case {
         double gamma_deg, d_vp;
     };
     for (const Case c :
          {Case{30.0, kInfinity}, Case{75.0, kInfinity}, Case{120.0, kInfinity}, Case{50.0, 3.0}}) {
-        const double g = c.gamma_deg * kPiD / 180.0;
-        const Ray ray{Vec3(0.0f),
-                      Vec3(static_cast<float>(std::sin(g)), 0.0f, static_cast<float>(-std::cos(g))),
-                      0.0f, static_cast<float>(c.d_vp)};
-        const double t_sv = beta * d_sv, a1 = t_sv * std::sin(g);
-        const double upper =
-            c.d_vp >= kInfinity
-                ? kPiD / 2.0
-                : kPiD / 4.0 + 0.5 * std::atan((beta * c.d_vp - t_sv * std::cos(g)) / a1);
-        const double expected = beta * beta * intensity * std::exp(-t_sv * std::cos(g)) /
-                                (2.0 * kPiD * a1) * (sun_f(a1, upper) - sun_f(a1, g / 2.0));
+        const Ray ray = test::SunAirlight::ray(c.gamma_deg, c.d_vp);
+        const double expected = test::SunAirlight::radiance(c.gamma_deg, c.d_vp);
         VolumeSettings single;
         single.estimator = Estimator::ResidualRatio;
         const Mean l = average(800000, [&](Pcg32& rng) {
             VolumeCounters counters;
-            return integrate_media(fog, lamp, nullptr, nullptr, ray, single, true, rng, counters)
+            return integrate_media(scene.fog, scene.lamp, nullptr, nullptr, ray, single, true, rng,
+                                   counters)
                 .radiance.g;
         });
         // 0.5% (the issue's bound), and the statistics are tight enough to see it.

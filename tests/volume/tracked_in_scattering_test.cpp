@@ -3,8 +3,10 @@
 // homogeneous box lit by a sun (closed form), a heterogeneous grid against a fine march, and
 // the white furnace for multiple scattering. Statistical assertions at 4 standard errors
 // (two-sided Gaussian false-failure rate 6e-5 each; fixed seeds, so a pass is reproducible).
+#include "tests/sample_mean.h"
 #include "vdb_test_grids.h"
 #include "volume/volume_path.h"
+#include "white_furnace.h"
 
 #include <gtest/gtest.h>
 
@@ -15,22 +17,10 @@
 namespace kasumi {
 namespace {
 
-struct Mean {
-    double mean = 0.0, stderr_ = 0.0;
-};
+using Mean = MeanAndError;
 
 Mean average(int n, const std::function<double(Pcg32&)>& sample) {
-    double sum = 0.0, sum_sq = 0.0;
-    for (int i = 0; i < n; ++i) {
-        Pcg32 rng(29, static_cast<uint64_t>(i));
-        const double x = sample(rng);
-        sum += x;
-        sum_sq += x * x;
-    }
-    Mean m;
-    m.mean = sum / n;
-    m.stderr_ = std::sqrt(std::max(0.0, sum_sq / n - m.mean * m.mean) / (n - 1));
-    return m;
+    return mean_over_streams(n, 29, sample);
 }
 
 VolumeSettings tracked(VolumeIntegrator integrator, int nee_points) {
@@ -123,35 +113,16 @@ TEST(TrackedInScattering, HeterogeneousGridMatchesAFineMarch) {
     }
 }
 
-/// Paths that leave the media see a uniform background of radiance 1.
-class UniformBackground final : public PathEnvironment {
-  public:
-    float surface_distance(const Ray&) const override { return kInfinity; }
-    Rgb radiance(const Ray&, Pcg32&) const override { return Rgb(1.0f); }
-};
-
 TEST(TrackedInScattering, WhiteFurnace) {
     // Albedo 1 inside a uniform environment of radiance 1: L = 1 exactly in expectation
     // (energy conservation), for a grid and a homogeneous box, camera inside the medium.
-    const std::string box = test::write_box("tracked_furnace", 16, 1.0f, 0.25);
-    const MediumSet grid({test::vdb_medium(
-        box, {{"density_scale", 3.0}, {"albedo", 1.0}, {"phase", {{"model", "hg"}, {"g", 0.6}}}})});
-    const MediumSet fog({Medium{"fog", HomogeneousMedium{Bounds3{Vec3(-1.0f), Vec3(1.0f)},
-                                                         Rgb(0.0f), Rgb(4.0f), Isotropic{}}}});
-    const Ray inside_grid{Vec3(2.0f, 1.9f, 2.1f), glm::normalize(Vec3(1, 0.3f, -0.2f)), 0.0f,
-                          kInfinity};
-    const Ray inside_fog{Vec3(0.1f, 0.2f, 0.0f), glm::normalize(Vec3(-1, 0.5f, 0.2f)), 0.0f,
-                         kInfinity};
-    const UniformBackground background;
+    const test::WhiteFurnace furnace("tracked_furnace");
     for (const int k : {1, 3}) {
         const VolumeSettings s = tracked(VolumeIntegrator::Multiple, k);
-        for (const auto& [media, ray] :
-             {std::pair{&grid, inside_grid}, std::pair{&fog, inside_fog}}) {
+        for (const auto& [media, ray] : {std::pair{&furnace.grid, furnace.inside_grid},
+                                         std::pair{&furnace.fog, furnace.inside_fog}}) {
             const Mean l = average(4000, [&](Pcg32& rng) {
-                VolumeCounters counters;
-                const VolumeResult r =
-                    integrate_media(*media, {}, nullptr, &background, ray, s, true, rng, counters);
-                return static_cast<double>(r.radiance.g + r.transmittance.g);
+                return test::WhiteFurnace::radiance(*media, s, ray, rng);
             });
             EXPECT_NEAR(l.mean, 1.0, 4.0 * l.stderr_ + 1e-6) << "nee_points " << k;
             EXPECT_LT(4.0 * l.stderr_, 0.02) << "nee_points " << k;  // a 2% loss fails
