@@ -97,10 +97,8 @@ struct Estimate {
     int taken;
 };
 
-using Visibility = std::function<bool(const Vec3& p, const Vec3& target)>;
-
 Estimate estimate(const SphereLight& light, const Vec3& p, const Vec3& n, int samples, int probes,
-                  const StratifiedLightSamples& u, const Visibility& visible) {
+                  const StratifiedLightSamples& u, const test::Visibility& visible) {
     ProbeRule rule(samples, probes);
     double lit = 0.0, all = 0.0;
     int k = 0;
@@ -123,42 +121,6 @@ Estimate estimate(const SphereLight& light, const Vec3& p, const Vec3& n, int sa
     return {lit / k, all > 0.0 ? exact_unshadowed * lit / all : 0.0, k};
 }
 
-/// The cos-weighted irradiance of the part of the sphere's cone that `visible` lets through,
-/// by midpoint quadrature over the cone (uniform in cos θ about the axis, and φ): written from
-/// the definition E = L ∫ cos θ_n V dω, independent of the sampler.
-double exact_irradiance(const SphereLight& light, const Vec3& p, const Vec3& n,
-                        const Visibility& visible, int cells) {
-    const DVec3 to_center = DVec3(light.center) - DVec3(p);
-    const double d = glm::length(to_center);
-    const double sin_sigma = light.radius / d;
-    const double one_minus_cos = 1.0 - std::sqrt(1.0 - sin_sigma * sin_sigma);
-    const Frame frame(Vec3(to_center / d));
-    double sum = 0.0;
-    for (int i = 0; i < cells; ++i) {
-        const double ct = 1.0 - one_minus_cos * (i + 0.5) / cells;
-        const double st = std::sqrt(1.0 - ct * ct);
-        for (int j = 0; j < cells; ++j) {
-            const double phi = 2.0 * kPiD * (j + 0.5) / cells;
-            const Vec3 w = frame.to_world(Vec3(static_cast<float>(st * std::cos(phi)),
-                                               static_cast<float>(st * std::sin(phi)),
-                                               static_cast<float>(ct)));
-            const double c = std::max(0.0f, glm::dot(n, w));
-            // A target far beyond the light along w: visibility is decided by the occluder,
-            // which lies between p and the light.
-            if (c > 0.0 && visible(p, p + 100.0f * w))
-                sum += c;
-        }
-    }
-    return luminance(light.luminance) * sum * 2.0 * kPiD * one_minus_cos / (double(cells) * cells);
-}
-
-/// Occluder: the half-plane y = 2, x < 0 (its edge along z). A ray from p (below) toward the
-/// light (above) is blocked when it crosses y = 2 at x < 0.
-bool past_edge(const Vec3& p, const Vec3& target) {
-    const float t = (2.0f - p.y) / (target.y - p.y);
-    return p.x + t * (target.x - p.x) >= 0.0f;
-}
-
 const SphereLight kLamp{Vec3(0.0f, 4.0f, 0.0f), 0.5f, Rgb(100.0f)};
 const Vec3 kUp(0.0f, 1.0f, 0.0f);
 
@@ -168,7 +130,7 @@ TEST(LightSamples, StratifiedUnshadowedIrradianceIsPiLSin2Alpha) {
     // cos θ weight varies by < 1.6% over it), and the mean over 4000 scrambles is within 5
     // standard errors (two-sided normal tail 5.7e-7).
     const double expected = kPiD * 100.0 * (0.125 * 0.125);
-    const Visibility always = [](const Vec3&, const Vec3&) { return true; };
+    const test::Visibility always = [](const Vec3&, const Vec3&) { return true; };
     Pcg32 rng(9, 1);
     double sum = 0.0, sum_sq = 0.0;
     const int trials = 4000;
@@ -191,7 +153,7 @@ struct Stats {
     double bias, se, rmse;
 };
 Stats stats(const Vec3& p, int samples, int probes, int trials, uint64_t seed, double exact,
-            const Visibility& visible, bool ratio = false) {
+            const test::Visibility& visible, bool ratio = false) {
     Pcg32 rng(seed, 3);
     double sum = 0.0, sum_sq = 0.0, sq_err = 0.0;
     for (int t = 0; t < trials; ++t) {
@@ -214,11 +176,11 @@ TEST(LightSamples, PenumbraProfileMatchesTheExactVisibleFraction) {
     // points). Faster than 1/√N: from 16 to 256 samples the RMSE summed over the profile falls
     // by more than 5.5x (1/√N gives 4; Owen-scrambled nets give 16^(3/4) = 8 for a smooth
     // edge); the RMSE estimates from 2000 trials are good to a few per cent.
-    const Visibility visible = past_edge;
+    const test::Visibility visible = test::past_edge;
     double rmse16 = 0.0, rmse256 = 0.0;
     for (float x : {-0.3f, -0.2f, -0.1f, 0.0f, 0.1f, 0.2f, 0.3f}) {
         const Vec3 p(x, 0.0f, 0.0f);
-        const double exact = exact_irradiance(kLamp, p, kUp, visible, 2000);
+        const double exact = test::sphere_quadrature(kLamp, p, kUp, visible, 2000);
         const double unshadowed = luminance(unshadowed_irradiance(kLamp, p, kUp));
         ASSERT_LE(exact, unshadowed * (1.0 + 1e-4));
         const Stats s16 = stats(p, 16, 0, 2000, 21, exact, visible);
@@ -243,12 +205,12 @@ TEST(LightSamples, AdaptiveProbesConvergeAsTheyTighten) {
     // as probes grow: it is at least 10 standard errors at 2 probes (the rule is biased) and
     // within 5 standard errors of 0 at 64 probes (the plain estimator). Probes must also save
     // work where the light is fully visible: all 4 probes agree, so 4 samples are taken.
-    const Visibility bar = [](const Vec3& p, const Vec3& target) {
+    const test::Visibility bar = [](const Vec3& p, const Vec3& target) {
         const float t = (2.0f - p.y) / (target.y - p.y);
         return std::abs(p.x + t * (target.x - p.x) - 0.05f) >= 0.02f;
     };
     const Vec3 p(0.0f, 0.0f, 0.0f);
-    const double exact = exact_irradiance(kLamp, p, kUp, bar, 2000);
+    const double exact = test::sphere_quadrature(kLamp, p, kUp, bar, 2000);
     const double unshadowed = luminance(unshadowed_irradiance(kLamp, p, kUp));
     ASSERT_LT(exact, 0.95 * unshadowed);
     std::vector<double> bias;
@@ -266,7 +228,7 @@ TEST(LightSamples, AdaptiveProbesConvergeAsTheyTighten) {
     }
     for (size_t i = 1; i < bias.size(); ++i)
         EXPECT_LE(bias[i], bias[i - 1] * 1.05 + 1e-3 * exact) << "probes step " << i;
-    const Visibility always = [](const Vec3&, const Vec3&) { return true; };
+    const test::Visibility always = [](const Vec3&, const Vec3&) { return true; };
     Pcg32 rng(5, 5);
     EXPECT_EQ(estimate(kLamp, p, kUp, 64, 4, StratifiedLightSamples(rng), always).taken, 4);
 }

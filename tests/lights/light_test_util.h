@@ -4,8 +4,10 @@
 /// chi-square p-value.
 #include "core/json_node.h"
 #include "lights/light_json.h"
+#include "lights/sphere_light.h"
 #include "phase/phase_quadrature.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -91,6 +93,43 @@ inline double sphere_quadrature(const Vec3& center, double radius, double lumina
         }
     }
     return luminance * sum * (1.0 - cos_sigma) * 2.0 * kPiD / (static_cast<double>(cells) * cells);
+}
+
+/// Whether the segment from p to target is unoccluded.
+using Visibility = std::function<bool(const Vec3& p, const Vec3& target)>;
+
+/// The shadowed illuminance E = L ∫ max(0, n·ω) V dω over the cone `light` subtends at p, where
+/// V is `visible` toward a target far beyond the light along ω (the occluder lies between p and
+/// the light); midpoint rule in (cos t, φ) about the axis, independent of the sampler.
+inline double sphere_quadrature(const SphereLight& light, const Vec3& p, const Vec3& n,
+                                const Visibility& visible, int cells) {
+    const DVec3 to_center = DVec3(light.center) - DVec3(p);
+    const double d = glm::length(to_center);
+    const double sin_sigma = light.radius / d;
+    const double one_minus_cos = 1.0 - std::sqrt(1.0 - sin_sigma * sin_sigma);
+    const Frame frame(Vec3(to_center / d));
+    double sum = 0.0;
+    for (int i = 0; i < cells; ++i) {
+        const double ct = 1.0 - one_minus_cos * (i + 0.5) / cells;
+        const double st = std::sqrt(1.0 - ct * ct);
+        for (int j = 0; j < cells; ++j) {
+            const double phi = 2.0 * kPiD * (j + 0.5) / cells;
+            const Vec3 w = frame.to_world(Vec3(static_cast<float>(st * std::cos(phi)),
+                                               static_cast<float>(st * std::sin(phi)),
+                                               static_cast<float>(ct)));
+            const double c = std::max(0.0f, glm::dot(n, w));
+            if (c > 0.0 && visible(p, p + 100.0f * w))
+                sum += c;
+        }
+    }
+    return luminance(light.luminance) * sum * 2.0 * kPiD * one_minus_cos / (double(cells) * cells);
+}
+
+/// Occluder of the penumbra tests: the half-plane y = 2, x < 0 (its edge along z). A ray from p
+/// (below) toward the target (above) is blocked when it crosses y = 2 at x < 0.
+inline bool past_edge(const Vec3& p, const Vec3& target) {
+    const float t = (2.0f - p.y) / (target.y - p.y);
+    return p.x + t * (target.x - p.x) >= 0.0f;
 }
 
 /// P-value of Pearson's chi-square for observed vs expected counts; cells expecting fewer than

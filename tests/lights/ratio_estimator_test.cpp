@@ -26,40 +26,9 @@ const SphereLight kLamp{Vec3(0.0f, 4.0f, 0.0f), 0.5f, Rgb(100.0f)};
 // of E_k cos θ_k then has noise even in full light, which the ratio estimator must cancel.
 const Vec3 kTilted = glm::normalize(Vec3(0.3f, 1.0f, 0.2f));
 
-using Visibility = std::function<bool(const Vec3& p, const Vec3& target)>;
-
-/// Occluder: the half-plane y = 2, x < 0 (edge along z). From a floor point (x, 0, z) the
-/// light's cone (half-angle ≈ 0.125) crosses y = 2 in a disc of radius ≈ 0.25 centred at
-/// x/2: the penumbra is |x| < 0.5 m, x < −0.5 umbra, x > 0.5 full light.
-bool past_edge(const Vec3& p, const Vec3& target) {
-    const float t = (2.0f - p.y) / (target.y - p.y);
-    return p.x + t * (target.x - p.x) >= 0.0f;
-}
-
-/// The shadowed illuminance L ∫ cos θ V dω over the sphere's cone by midpoint quadrature
-/// (uniform in cos of the angle to the axis, and azimuth), from the definition.
-double exact_irradiance(const Vec3& p, const Vec3& n, const Visibility& visible, int cells) {
-    const DVec3 to_center = DVec3(kLamp.center) - DVec3(p);
-    const double d = glm::length(to_center);
-    const double sin_sigma = kLamp.radius / d;
-    const double one_minus_cos = 1.0 - std::sqrt(1.0 - sin_sigma * sin_sigma);
-    const Frame frame(Vec3(to_center / d));
-    double sum = 0.0;
-    for (int i = 0; i < cells; ++i) {
-        const double ct = 1.0 - one_minus_cos * (i + 0.5) / cells;
-        const double st = std::sqrt(1.0 - ct * ct);
-        for (int j = 0; j < cells; ++j) {
-            const double phi = 2.0 * kPiD * (j + 0.5) / cells;
-            const Vec3 w = frame.to_world(Vec3(static_cast<float>(st * std::cos(phi)),
-                                               static_cast<float>(st * std::sin(phi)),
-                                               static_cast<float>(ct)));
-            const double c = std::max(0.0f, glm::dot(n, w));
-            if (c > 0.0 && visible(p, p + 100.0f * w))
-                sum += c;
-        }
-    }
-    return luminance(kLamp.luminance) * sum * 2.0 * kPiD * one_minus_cos / (double(cells) * cells);
-}
+// Occluder: test::past_edge, the half-plane y = 2, x < 0 (edge along z). From a floor point (x, 0,
+// z) the light's cone (half-angle ≈ 0.125) crosses y = 2 in a disc of radius ≈ 0.25 centred at x/2:
+// the penumbra is |x| < 0.5 m, x < −0.5 umbra, x > 0.5 full light.
 
 struct Estimates {
     double ratio;  ///< E(p, n) Σ E_k cos θ_k V_k / Σ E_k cos θ_k
@@ -67,7 +36,7 @@ struct Estimates {
 };
 
 Estimates estimate(const Vec3& p, const Vec3& n, int samples, const StratifiedLightSamples& u,
-                   const Visibility& visible) {
+                   const test::Visibility& visible) {
     const SphereLightCone cone(kLamp, p);
     double lit = 0.0, all = 0.0;
     for (int k = 0; k < samples; ++k) {
@@ -103,11 +72,12 @@ TEST(RatioEstimator, ExactWithZeroVarianceInFullLightAndUmbra) {
     // samples (to float rounding, 1e-5 relative); in the umbra every V_k = 0. The plain mean
     // on the tilted receiver scatters by more than 1e-3 relative over the same scrambles (so
     // the first check is not trivially met by any estimator).
-    const Visibility visible = past_edge;
+    const test::Visibility visible = test::past_edge;
     const Vec3 lit_point(0.6f, 0.0f, 0.1f), umbra_point(-0.6f, 0.0f, 0.1f);
     const double e_lit = luminance(unshadowed_irradiance(kLamp, lit_point, kTilted));
-    ASSERT_NEAR(exact_irradiance(lit_point, kTilted, visible, 400), e_lit, 1e-4 * e_lit);
-    ASSERT_EQ(exact_irradiance(umbra_point, kTilted, visible, 400), 0.0);
+    ASSERT_NEAR(test::sphere_quadrature(kLamp, lit_point, kTilted, visible, 400), e_lit,
+                1e-4 * e_lit);
+    ASSERT_EQ(test::sphere_quadrature(kLamp, umbra_point, kTilted, visible, 400), 0.0);
     Pcg32 rng(11, 4);
     for (int samples : {1, 4, 16, 64}) {
         double lo = 1e30, hi = -1e30, mean_lo = 1e30, mean_hi = -1e30;
@@ -136,11 +106,11 @@ TEST(RatioEstimator, ConvergesInThePenumbraWithBiasFarBelowTheNoise) {
     // of means (to first order −Cov(X, Y)/E[X]² + E[Y] Var[X]/E[X]³, O(1/N)): the measured
     // bias is printed; it must stay below a quarter of the RMSE at every N (the bias is
     // negligible next to the noise) and below 1% of E(p, n).
-    const Visibility visible = past_edge;
+    const test::Visibility visible = test::past_edge;
     double rmse4 = 0.0, rmse256 = 0.0;
     for (float x : {-0.2f, -0.1f, 0.0f, 0.1f, 0.2f}) {
         const Vec3 p(x, 0.0f, 0.1f);
-        const double exact = exact_irradiance(p, kTilted, visible, 2000);
+        const double exact = test::sphere_quadrature(kLamp, p, kTilted, visible, 2000);
         const double unshadowed = luminance(unshadowed_irradiance(kLamp, p, kTilted));
         for (int samples : {4, 16, 64, 256}) {
             Pcg32 rng(100 + static_cast<uint64_t>(samples), static_cast<uint64_t>(x * 100 + 50));
@@ -177,7 +147,7 @@ TEST(RatioEstimator, ConvergesInThePenumbraWithBiasFarBelowTheNoise) {
 /// The estimate with outline probes in front (as shade_surface): Lit → E(p, n), Shadowed → 0,
 /// Mixed → the ratio estimator over `samples`.
 double with_outline(const Vec3& p, const Vec3& n, int probes, int samples,
-                    const StratifiedLightSamples& u, const Visibility& visible,
+                    const StratifiedLightSamples& u, const test::Visibility& visible,
                     OutlineVerdict* verdict_out = nullptr) {
     const SphereLightCone cone(kLamp, p);
     const OutlineVerdict verdict =
@@ -227,7 +197,7 @@ TEST(OutlineProbes, ErrorAgainstAStraightEdgeStaysInsideTheSegmentBound) {
     // standard errors plus 1% of E(p, n) (the ratio estimator's own bias in the Mixed case,
     // measured above: far smaller); averaged over rotations the error is well below the
     // worst case. Fewer points are decided by the probes alone as their count grows.
-    const Visibility visible = past_edge;
+    const test::Visibility visible = test::past_edge;
     std::vector<double> decided;
     for (int probes : {4, 8, 16}) {
         const double bound = outline_probe_bound(probes);
@@ -235,7 +205,7 @@ TEST(OutlineProbes, ErrorAgainstAStraightEdgeStaysInsideTheSegmentBound) {
         int n_decided = 0, n_total = 0;
         for (int i = -30; i <= 30; ++i) {
             const Vec3 p(0.02f * static_cast<float>(i), 0.0f, 0.1f);
-            const double exact = exact_irradiance(p, kTilted, visible, 800);
+            const double exact = test::sphere_quadrature(kLamp, p, kTilted, visible, 800);
             const double unshadowed = luminance(unshadowed_irradiance(kLamp, p, kTilted));
             Pcg32 rng(7, static_cast<uint64_t>(i + 100 * probes + 1000));
             const int trials = 400;
@@ -278,12 +248,12 @@ TEST(OutlineProbes, ErrorAgainstAStraightEdgeStaysInsideTheSegmentBound) {
 TEST(OutlineProbes, MissAnOccluderWhoseShadowLiesInsideTheDisc) {
     // The documented limit: a bar (y = 2, |x − 0.05| < 0.02) seen against the middle of the
     // light blocks none of the outline rays, so the point is taken as fully lit.
-    const Visibility bar = [](const Vec3& p, const Vec3& target) {
+    const test::Visibility bar = [](const Vec3& p, const Vec3& target) {
         const float t = (2.0f - p.y) / (target.y - p.y);
         return std::abs(p.x + t * (target.x - p.x) - 0.05f) >= 0.02f;
     };
     const Vec3 p(0.0f, 0.0f, 0.0f), up(0.0f, 1.0f, 0.0f);
-    const double exact = exact_irradiance(p, up, bar, 1000);
+    const double exact = test::sphere_quadrature(kLamp, p, up, bar, 1000);
     const double unshadowed = luminance(unshadowed_irradiance(kLamp, p, up));
     ASSERT_LT(exact, 0.95 * unshadowed);
     Pcg32 rng(3, 3);
