@@ -8,6 +8,10 @@ function(kasumi_target name)
     target_compile_options(${name} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                            -fno-sanitize-recover=undefined)
     target_link_options(${name} PRIVATE -fsanitize=address,undefined)
+    get_target_property(type ${name} TYPE)
+    if(type STREQUAL "EXECUTABLE")
+      target_sources(${name} PRIVATE ${PROJECT_SOURCE_DIR}/core/sanitizer_defaults.cpp)
+    endif()
   endif()
 endfunction()
 
