@@ -207,9 +207,11 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
         const PointLightSampler sampler(light, hit.position);
         if (traced && visible == KnownVisibility::Unknown && light.exact_penumbra &&
             !(max_component(material.ks) > 0.0f) && !scene.plan().volume &&
-            sampler.sphere_cone() != nullptr && sampler.sphere_cone()->above_plane(ng)) {
+            sampler.sphere_cone() != nullptr &&
+            (ng == ns || sampler.sphere_cone()->above_plane(ng))) {
             // Exact penumbra (surface/sphere_light_occluders.h): the closed-form visible part
-            // of the light, E = L Ω_n, and a Lambertian surface without media reflects kd/π E.
+            // of the light, E = L Ω_n, and a Lambertian surface without media reflects kd/π E
+            // (clipped at the horizon of ns, which is the geometric one when they are equal).
             // Where the closed form does not apply, the samples below.
             const auto& sphere = std::get<SphereLight>(light.emitter);
             if (const auto omega =

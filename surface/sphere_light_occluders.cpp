@@ -93,17 +93,28 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
     const double sin_sigma = radius / d;
     const double cos_sigma = std::sqrt(std::max(0.0, 1.0 - sin_sigma * sin_sigma));
     const double n_axis = glm::dot(n, axis);
-    if (!(n_axis > sin_sigma))
-        return std::nullopt;  // the cone reaches the horizon of n
-    const double unshadowed = kPiD * sin_sigma * sin_sigma * n_axis;
+    if (!(n_axis > -sin_sigma))
+        return 0.0;  // wholly below the horizon of n
+    // The light's cone, and the hemisphere above n when the cone reaches below it (then every
+    // region is clipped to it, so the integrand n · ω stays the clamped cosine).
+    const SphericalCap base[2] = {SphericalCap{axis, cos_sigma, sin_sigma},
+                                  SphericalCap{n, 0.0, 1.0}};
+    const size_t base_count = n_axis > sin_sigma ? 1 : 2;
+    const double unshadowed = base_count == 1 ? kPiD * sin_sigma * sin_sigma * n_axis
+                                              : cap_intersection_projected_solid_angle(base, 2, n);
+    if (!std::isfinite(unshadowed))
+        return std::nullopt;
     const double sigma = std::asin(sin_sigma);
     // Every direction of the cone meets the light between these distances (the nearest point,
     // on the axis, and the rim, where the cone grazes the sphere).
     const double nearest = d - radius;
     const double farthest = std::sqrt((d - radius) * (d + radius));
 
-    SphericalCap occluder_caps[kMaxOccluders][kMaxCapsPerOccluder];
-    int cap_count[kMaxOccluders] = {};
+    // One spare slot: an occluder's caps are built there before it is known to overlap.
+    SphericalCap occluder_caps[kMaxOccluders + 1][kMaxCapsPerOccluder];
+    int cap_count[kMaxOccluders + 1] = {};
+    double single[kMaxOccluders] = {};  ///< measure of (base ∩ occluder k)
+    SphericalCap caps[2 + kMaxOccluders * kMaxCapsPerOccluder];
     int occluders = 0;
     for (size_t k = 0; k < m_occluders.size(); ++k) {
         const Occluder& o = m_occluders[k];
@@ -138,15 +149,14 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
         }
         if (s_min >= farthest)
             continue;
-        if (s_max > nearest || occluders == kMaxOccluders)
-            return std::nullopt;
-        SphericalCap* caps = occluder_caps[occluders];
+        SphericalCap* occ = occluder_caps[occluders];
         int& count = cap_count[occluders];
+        count = 0;
         if (o.kind == Kind::Sphere) {
             if (!(dist > o.radius))
                 return std::nullopt;
             const double sin_beta = o.radius / dist;
-            caps[count++] = SphericalCap{
+            occ[count++] = SphericalCap{
                 to_center / dist, std::sqrt(std::max(0.0, 1.0 - sin_beta * sin_beta)), sin_beta};
         } else if (o.kind == Kind::Box) {
             // Face (axis i, side s) faces p when p is beyond its plane; a silhouette edge joins
@@ -172,7 +182,7 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
                         u[e] = o.lo[e];
                         v[e] = o.hi[e];
                         if (count == kMaxCapsPerOccluder ||
-                            !edge_hemisphere(p, u, v, o.center, caps[count++]))
+                            !edge_hemisphere(p, u, v, o.center, occ[count++]))
                             return std::nullopt;
                     }
             }
@@ -182,34 +192,49 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
             if (std::abs(height) <= 1e-12 * glm::length(normal) * (dist + o.radius))
                 continue;  // p in the quad's plane: it subtends no solid angle
             for (int v = 0; v < 4; ++v)
-                if (!edge_hemisphere(p, o.quad[v], o.quad[(v + 1) % 4], o.center, caps[count++]))
+                if (!edge_hemisphere(p, o.quad[v], o.quad[(v + 1) % 4], o.center, occ[count++]))
                     return std::nullopt;
         }
-        ++occluders;
+        // The part of the (clipped) cone the occluder covers; none: it hides nothing.
+        size_t n_caps = 0;
+        for (size_t b = 0; b < base_count; ++b)
+            caps[n_caps++] = base[b];
+        for (int c = 0; c < count; ++c)
+            caps[n_caps++] = occ[c];
+        const double covered = cap_intersection_projected_solid_angle(caps, n_caps, n);
+        if (!std::isfinite(covered))
+            return std::nullopt;
+        if (!(covered > 0.0))
+            continue;
+        if (s_max > nearest || occluders == kMaxOccluders)
+            return std::nullopt;
+        single[occluders++] = covered;
     }
-    if (occluders == 0)
-        return unshadowed;
 
-    // Inclusion-exclusion over the occluders: the measure of (cone ∩ ∪ O_k).
-    SphericalCap caps[1 + kMaxOccluders * kMaxCapsPerOccluder];
-    caps[0] = SphericalCap{axis, cos_sigma, sin_sigma};
+    // Inclusion-exclusion over the occluders: the measure of (cone ∩ ∪ O_k); the single terms
+    // are known, the intersections of two or more are computed here.
     double hidden = 0.0;
+    for (int k = 0; k < occluders; ++k)
+        hidden += single[k];
     for (unsigned mask = 1; mask < (1u << occluders); ++mask) {
-        size_t count = 1;
         int members = 0;
-        for (int k = 0; k < occluders; ++k) {
-            if (!(mask & (1u << k)))
-                continue;
-            ++members;
-            for (int c = 0; c < cap_count[k]; ++c)
-                caps[count++] = occluder_caps[k][c];
-        }
-        const double term = cap_intersection_projected_solid_angle(caps, count, n);
+        for (int k = 0; k < occluders; ++k)
+            members += (mask >> k) & 1u;
+        if (members < 2)
+            continue;
+        size_t n_caps = 0;
+        for (size_t b = 0; b < base_count; ++b)
+            caps[n_caps++] = base[b];
+        for (int k = 0; k < occluders; ++k)
+            if (mask & (1u << k))
+                for (int c = 0; c < cap_count[k]; ++c)
+                    caps[n_caps++] = occluder_caps[k][c];
+        const double term = cap_intersection_projected_solid_angle(caps, n_caps, n);
         if (!std::isfinite(term))
             return std::nullopt;
         hidden += (members % 2 == 1) ? term : -term;
     }
-    return std::clamp(unshadowed - hidden, 0.0, unshadowed);
+    return std::clamp(unshadowed - hidden, 0.0, std::max(unshadowed, 0.0));
 }
 
 }  // namespace kasumi

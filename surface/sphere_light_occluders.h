@@ -20,23 +20,23 @@ class SphereLightOccluders {
 
     explicit SphereLightOccluders(const std::vector<Shape>& shapes);
 
-    /// ∫ n · ω dω over the directions of the light's cone at p that reach the light (sr): the
-    /// unshadowed value π sin²σ (n · axis) less the measure of the union of the occluders'
-    /// solid angles inside the cone, each occluder a sphere (a cap), an axis-aligned box or a
-    /// quad (convex spherical polygons, bounded by the great circles through p and their
+    /// ∫ max(0, n · ω) dω over the directions of the light's cone at p that reach the light
+    /// (sr): the unshadowed value (π sin²σ (n · axis) when the cone is above the plane of n,
+    /// else the cone clipped to the hemisphere above n) less the measure of the union of the
+    /// occluders' solid angles inside it, each occluder a sphere (a cap), an axis-aligned box
+    /// or a quad (convex spherical polygons, bounded by the great circles through p and their
     /// silhouette edges), the union by inclusion-exclusion; every region is an intersection of
     /// caps (lights/cap_region.h). E = L × this. `receiver` is the shape p lies on: skipped
     /// when it is a sphere, box or quad (a convex surface hides nothing above its tangent
-    /// plane). Returns nothing, so the caller samples, when:
-    /// - the cone is not wholly above the plane of n (the cosine would be clipped),
+    /// plane; the caller clips at the geometric horizon by passing the geometric normal, or a
+    /// shading normal equal to it). Returns nothing, so the caller samples, when:
     /// - a mesh's bounding sphere meets the cone (meshes are not silhouetted),
-    /// - an occluder straddles the light's distance (parts of it nearer than the nearest point
-    ///   of the light, d − R, and parts farther: then it would hide the light only in part of
-    ///   its solid angle); occluders wholly beyond √(d² − R²), the farthest visible point of
-    ///   the light, are ignored,
+    /// - an occluder that covers part of the cone straddles the light's distance (parts of it
+    ///   nearer than the nearest point of the light, d − R, and parts farther); occluders
+    ///   wholly beyond √(d² − R²), the farthest visible point of the light, are ignored,
     /// - p is inside (or on) an occluder, or on the line of a box or quad edge,
-    /// - more than kMaxOccluders occluders meet the cone.
-    /// Zero when p is inside the light.
+    /// - more than kMaxOccluders occluders cover part of the cone.
+    /// Zero when p is inside the light or the cone is wholly below the plane of n.
     std::optional<double> visible_projected_solid_angle(const SphereLight& light, const Vec3& p,
                                                         const Vec3& n, uint32_t receiver) const;
 
