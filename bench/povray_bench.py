@@ -106,12 +106,17 @@ KASUMI_MEDIA_REFERENCE = (["/render/volume/step_m=0.1"], 16)
 # film.jitter false). "probes P": shadow_probes, the adaptive rule (biased; its bias is in the
 # measured error, the reference has no probes). "outline K": outline_probes, K shadow rays to
 # the light's outline decide lit and umbra points alone (biased, bounded; docs/lights.md).
-KASUMI_AREA_SWEEP = [("spp 1 samples %d probes %d" % (n, p) + (" outline %d" % o if o else ""), 1,
+# "exact": exact_penumbra, the visible part of the light in closed form wherever it applies
+# (docs/lights.md, "Exact penumbrae"); the samples and outline probes only where it does not.
+KASUMI_AREA_SWEEP = [("spp 1 samples %d probes %d" % (n, p) + (" outline %d" % o if o else "") +
+                      (" exact" if x else ""), 1,
                       ["/lights/0/samples=%d" % n, "/lights/0/shadow_probes=%d" % p,
-                       "/lights/0/outline_probes=%d" % o])
-                     for n, p, o in ((4, 0, 0), (16, 0, 0), (64, 0, 0), (64, 16, 0),
-                                     (1024, 64, 0), (16, 0, 6), (16, 0, 8), (64, 0, 8),
-                                     (256, 0, 8), (256, 0, 12), (1024, 0, 16))]
+                       "/lights/0/outline_probes=%d" % o,
+                       "/lights/0/exact_penumbra=%s" % ("true" if x else "false")])
+                     for n, p, o, x in ((4, 0, 0, 0), (16, 0, 0, 0), (64, 0, 0, 0), (64, 16, 0, 0),
+                                        (1024, 64, 0, 0), (16, 0, 6, 0), (16, 0, 8, 0),
+                                        (64, 0, 8, 0), (256, 0, 8, 0), (256, 0, 12, 0),
+                                        (1024, 0, 16, 0), (16, 0, 8, 1), (256, 0, 8, 1))]
 KASUMI_AREA_REFERENCE = (["/lights/0/samples=512"], 8)
 
 
