@@ -1,5 +1,6 @@
 #include "render/gi_settings.h"
 
+#include "core/json_choice.h"
 #include "core/json_int.h"
 
 #include <filesystem>
@@ -49,16 +50,10 @@ RadiositySettings parse_radiosity_settings(const JsonNode& node) {
         r.max_subdivision = parse_int_in(*v, 0, 8);
     if (auto v = reader.optional("refine_threshold"))
         r.refine_threshold = v->positive();
-    if (auto v = reader.optional("solver")) {
-        const std::string name = v->as_string();
-        if (name == "shooting") {
-            r.solver = RadiositySolver::Shooting;
-        } else if (name == "gauss-seidel") {
-            r.solver = RadiositySolver::GaussSeidel;
-        } else {
-            v->fail("expected \"shooting\" or \"gauss-seidel\"");
-        }
-    }
+    if (auto v = reader.optional("solver"))
+        r.solver =
+            parse_choice<RadiositySolver>(*v, {{"shooting", RadiositySolver::Shooting},
+                                               {"gauss-seidel", RadiositySolver::GaussSeidel}});
     if (auto v = reader.optional("tolerance"))
         r.tolerance = v->in_open(0.0f, 1.0f);
     if (auto v = reader.optional("max_iterations"))

@@ -1,5 +1,6 @@
 #include "render/photon_settings.h"
 
+#include "core/json_choice.h"
 #include "core/json_int.h"
 
 #include <string>
@@ -47,18 +48,10 @@ PhotonSettings parse_photon_settings(const JsonNode& node) {
         s.shadow_count = parse_count(*v);
     if (auto v = reader.optional("shadow_k"))
         s.shadow_k = parse_int_in(*v, 1, 1000);
-    if (auto v = reader.optional("filter")) {
-        const std::string name = v->as_string();
-        if (name == "box") {
-            s.filter = PhotonFilter::Box;
-        } else if (name == "cone") {
-            s.filter = PhotonFilter::Cone;
-        } else if (name == "epanechnikov") {
-            s.filter = PhotonFilter::Epanechnikov;
-        } else {
-            v->fail("expected \"box\", \"cone\" or \"epanechnikov\"");
-        }
-    }
+    if (auto v = reader.optional("filter"))
+        s.filter = parse_choice<PhotonFilter>(*v, {{"box", PhotonFilter::Box},
+                                                   {"cone", PhotonFilter::Cone},
+                                                   {"epanechnikov", PhotonFilter::Epanechnikov}});
     reader.finish();
     return s;
 }

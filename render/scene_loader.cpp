@@ -1,6 +1,7 @@
 #include "render/scene_loader.h"
 
 #include "core/error.h"
+#include "core/json_choice.h"
 #include "core/json_int.h"
 #include "lights/light_json.h"
 #include "render/animation.h"
@@ -89,32 +90,19 @@ RenderSettings parse_render(const JsonNode& node) {
             render.volume.estimator = *estimator;
             render.volume.estimator_given = true;
         }
-        if (auto integrator = volume.optional("integrator")) {
-            const std::string name = integrator->as_string();
-            if (name == "single") {
-                render.volume.integrator = VolumeIntegrator::Single;
-            } else if (name == "multiple") {
-                render.volume.integrator = VolumeIntegrator::Multiple;
-            } else {
-                integrator->fail("expected \"single\" or \"multiple\"");
-            }
-        }
+        if (auto integrator = volume.optional("integrator"))
+            render.volume.integrator = parse_choice<VolumeIntegrator>(
+                *integrator,
+                {{"single", VolumeIntegrator::Single}, {"multiple", VolumeIntegrator::Multiple}});
         if (auto depth = volume.optional("max_depth"))
             render.volume.max_depth = parse_int_in(*depth, 1, 1 << 16);
         if (auto cache = volume.optional("light_cache"))
             render.volume.light_cache = cache->as_bool();
         if (auto points = volume.optional("nee_points"))
             render.volume.nee_points = parse_int_in(*points, 0, 64);
-        if (auto sampling = volume.optional("light_sampling")) {
-            const std::string name = sampling->as_string();
-            if (name == "all") {
-                render.volume.light_sampling = LightSampling::All;
-            } else if (name == "one") {
-                render.volume.light_sampling = LightSampling::One;
-            } else {
-                sampling->fail("expected \"all\" or \"one\"");
-            }
-        }
+        if (auto sampling = volume.optional("light_sampling"))
+            render.volume.light_sampling = parse_choice<LightSampling>(
+                *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});
         volume.finish();
     }
     if (auto v = reader.optional("whitted")) {

@@ -1,5 +1,6 @@
 #include "volume/sky_settings.h"
 
+#include "core/json_choice.h"
 #include "core/json_int.h"
 #include "volume/atmosphere.h"
 
@@ -12,24 +13,11 @@ const char* sky_mode_name(SkyMode mode) {
 void parse_sky_render_keys(JsonObjectReader& render, SkySettings& sky) {
     if (const auto v = render.optional("sky")) {
         JsonObjectReader reader(*v);
-        if (const auto m = reader.optional("mode")) {
-            const std::string name = m->as_string();
-            if (name == "reference")
-                sky.mode = SkyMode::Reference;
-            else if (name == "fast")
-                sky.mode = SkyMode::Fast;
-            else
-                m->fail("expected \"reference\" or \"fast\"");
-        }
-        if (const auto m = reader.optional("aerial_perspective")) {
-            const std::string name = m->as_string();
-            if (name == "table")
-                sky.aerial_table = true;
-            else if (name == "march")
-                sky.aerial_table = false;
-            else
-                m->fail("expected \"table\" or \"march\"");
-        }
+        if (const auto m = reader.optional("mode"))
+            sky.mode = parse_choice<SkyMode>(
+                *m, {{"reference", SkyMode::Reference}, {"fast", SkyMode::Fast}});
+        if (const auto m = reader.optional("aerial_perspective"))
+            sky.aerial_table = parse_choice<bool>(*m, {{"table", true}, {"march", false}});
         if (const auto o = reader.optional("orders"))
             sky.orders = parse_int_in(*o, 1, 64);
         if (const auto s = reader.optional("view_steps"))

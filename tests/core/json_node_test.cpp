@@ -1,6 +1,8 @@
 #include "core/json_node.h"
 
 #include "core/error.h"
+#include "core/json_choice.h"
+#include "core/json_int.h"
 
 #include <gtest/gtest.h>
 
@@ -61,6 +63,31 @@ TEST(JsonNode, NegativeCoefficientIsRejected) {
 
 TEST(JsonNode, PointerEscapesKeys) {
     EXPECT_EQ(json_pointer_escape("a/b~c"), "a~1b~0c");
+}
+
+TEST(JsonNode, ChoicesAndRangedIntegersNameWhatTheyExpect) {
+    const Json j =
+        parse_json_text(R"({"a": "cone", "b": "disc", "c": 2, "n": 65, "m": 1.5})", "s.json");
+    const JsonNode root(j, "s.json");
+    enum class Filter { Box, Cone, Epanechnikov };
+    const auto filter = [&](const char* key) {
+        return parse_choice<Filter>(
+            root.child(key),
+            {{"box", Filter::Box}, {"cone", Filter::Cone}, {"epanechnikov", Filter::Epanechnikov}});
+    };
+    EXPECT_EQ(filter("a"), Filter::Cone);
+    EXPECT_EQ(error_of([&] { filter("b"); }),
+              "s.json: /b = \"disc\": expected \"box\", \"cone\" or \"epanechnikov\"");
+    EXPECT_EQ(error_of([&] {
+                  parse_choice<bool>(root.child("b"), {{"on", true}, {"off", false}});
+              }),
+              "s.json: /b = \"disc\": expected \"on\" or \"off\"");
+    EXPECT_NE(error_of([&] { filter("c"); }).find("/c = 2: expected a string"), std::string::npos);
+    EXPECT_EQ(parse_int_in(root.child("c"), 0, 64), 2);
+    EXPECT_EQ(error_of([&] { parse_int_in(root.child("n"), 0, 64); }),
+              "s.json: /n = 65: must be an integer in [0, 64]");
+    EXPECT_NE(error_of([&] { parse_int_in(root.child("m"), 0, 64); }).find("expected an integer"),
+              std::string::npos);
 }
 
 }  // namespace
