@@ -43,6 +43,11 @@ struct VolumeSettings {
     /// Directional lights' transmittance through a single grid medium from a precomputed cache
     /// (volume/light_cache.h; biased, stated there) instead of the estimator.
     bool light_cache = false;
+    /// Russian roulette on next-event estimation (volume/volume_path.cpp, nee_survival): the
+    /// shadow ray toward a light is traced with probability q = min(1, max(0.1, 4 pi p(mu)))
+    /// and weighted 1/q, so scattering that sends less light toward the eye than an isotropic
+    /// phase would mostly skips its transmittance walk. Unbiased.
+    bool nee_roulette = false;
     /// > 0: the trackers' paths use ratio tracking for in-scattering with next-event
     /// estimation at this many collisions per path segment (volume/volume_path.cpp,
     /// tracked_path_radiance); 0: one free-flight scattering point per segment.

@@ -22,6 +22,24 @@ namespace {
 constexpr float kTailTransmittance = 1e-4f;
 /// Paths play Russian roulette from this many scattering events on.
 constexpr int kRouletteDepth = 3;
+/// render.volume.nee_roulette: the smallest probability with which a shadow ray is traced.
+constexpr float kNeeSurvivalFloor = 0.1f;
+
+/// The probability with which next-event estimation at a scattering event traces its shadow
+/// ray (render.volume.nee_roulette): q = min(1, max(kNeeSurvivalFloor, p(mu) / p_iso)), p the
+/// largest phase value at cosine mu among the media in `mask` and p_iso = 1/(4 pi) the
+/// isotropic one. Russian roulette with the contribution weighted 1/q is unbiased for any q > 0
+/// (Arvo & Kirk 1990); the light an event sends toward the eye is sigma_s p(mu) E T, so this
+/// q traces every event whose phase sends at least the isotropic share and the others in
+/// proportion to it: the shadow rays left out are those whose contributions are small (a
+/// front-lit cloud with HG g = 0.8 backscatters with p/p_iso down to 0.06). The floor bounds
+/// the variance added where the phase value says little about the transmittance.
+float nee_survival(const MediumSet& media, uint32_t mask, float mu) {
+    float p = 0.0f;
+    for (uint32_t m = mask; m != 0; m &= m - 1)
+        p = std::max(p, media.phase_value(static_cast<uint32_t>(__builtin_ctz(m)), mu));
+    return std::min(1.0f, std::max(kNeeSurvivalFloor, 4.0f * kPi * p));
+}
 
 /// The next path vertex after a scattering event at `position`: a direction from the media's
 /// phase mixture (throughput times f / pdf), Russian roulette from kRouletteDepth events on, and
@@ -444,6 +462,17 @@ Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t ligh
     if (settings.light_cache && !is_black(f)) {
         if (const LightTransmittanceCache* cache = media.light_cache(light_index, light))
             cached = cache->transmittance(x);
+    }
+    if (settings.nee_roulette && !cached && !is_black(f)) {
+        // A cached transmittance costs no walk: no roulette then.
+        const float q = nee_survival(media, media_mask, scattering_cosine(wo, in.wi));
+        if (q < 1.0f) {
+            if (!(rng.next_float() < q))
+                return Rgb(0.0f);
+            return light_term(media, light, occlusion, x, in, f, cached, settings, step, rng,
+                              counters) /
+                   q;
+        }
     }
     return light_term(media, light, occlusion, x, in, f, cached, settings, step, rng, counters);
 }
