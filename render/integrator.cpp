@@ -204,23 +204,24 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
         // rng), one shadow ray each, and with `shadow_probes` the adaptive rule for ray-traced
         // or unshadowed lights (lights/light_samples.h).
         const StratifiedLightSamples u_light(rng);
-        const PointLightSampler sampler(light, hit.position);
         if (traced && visible == KnownVisibility::Unknown && light.exact_penumbra &&
-            !(max_component(material.ks) > 0.0f) && !scene.plan().volume &&
-            sampler.sphere_cone() != nullptr &&
-            (ng == ns || sampler.sphere_cone()->above_plane(ng))) {
+            !(max_component(material.ks) > 0.0f) && !scene.plan().volume) {
             // Exact penumbra (surface/sphere_light_occluders.h): the closed-form visible part
             // of the light, E = L Ω_n, and a Lambertian surface without media reflects kd/π E
             // (clipped at the horizon of ns, which is the geometric one when they are equal).
             // Where the closed form does not apply, the samples below.
             const auto& sphere = std::get<SphereLight>(light.emitter);
-            if (const auto omega =
-                    scene.surfaces()->sphere_light_occluders().visible_projected_solid_angle(
-                        sphere, hit.position, ns, hit.shape)) {
-                radiance += material.kd * kInvPi * sphere.luminance * static_cast<float>(*omega);
-                continue;
+            if (ng == ns || SphereLightCone(sphere, hit.position).above_plane(ng)) {
+                if (const auto omega =
+                        scene.surfaces()->sphere_light_occluders().visible_projected_solid_angle(
+                            sphere, hit.position, ns, hit.shape)) {
+                    radiance +=
+                        material.kd * kInvPi * sphere.luminance * static_cast<float>(*omega);
+                    continue;
+                }
             }
         }
+        const PointLightSampler sampler(light, hit.position);
         if (traced && visible == KnownVisibility::Unknown && light.outline_probes > 0 &&
             sampler.sphere_cone() != nullptr) {
             // Outline probes (lights/light_samples.h, OutlineProbes; biased, bounded).

@@ -104,7 +104,6 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
                                               : cap_intersection_projected_solid_angle(base, 2, n);
     if (!std::isfinite(unshadowed))
         return std::nullopt;
-    const double sigma = std::asin(sin_sigma);
     // Every direction of the cone meets the light between these distances (the nearest point,
     // on the axis, and the rim, where the cone grazes the sphere).
     const double nearest = d - radius;
@@ -124,9 +123,12 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
         const double dist = glm::length(to_center);
         if (dist > o.radius) {
             // Cone against the bounding sphere's cone: disjoint when the axes are farther
-            // apart than the two half-angles.
-            const double cos_apart = std::clamp(glm::dot(axis, to_center) / dist, -1.0, 1.0);
-            if (std::acos(cos_apart) >= sigma + std::asin(o.radius / dist))
+            // apart than the two half-angles, i.e. (σ + β < π) when the cosine of the angle
+            // between them is at most cos(σ + β) = cos σ cos β − sin σ sin β.
+            const double sin_beta = o.radius / dist;
+            const double cos_beta = std::sqrt(std::max(0.0, 1.0 - sin_beta * sin_beta));
+            const double cos_apart = glm::dot(axis, to_center) / dist;
+            if (cos_apart <= cos_sigma * cos_beta - sin_sigma * sin_beta)
                 continue;
             if (dist - o.radius >= farthest)
                 continue;  // wholly beyond the visible side of the light
