@@ -3,6 +3,10 @@
 #include "volume/vdb_module.h"
 
 #include "core/module_loader.h"
+#include "volume/vdb_direct.h"
+
+#include <cstdlib>
+#include <cstring>
 
 #ifndef KASUMI_VDB_MODULE_BUILD_PATH
 #define KASUMI_VDB_MODULE_BUILD_PATH ""
@@ -24,6 +28,18 @@ const VdbModuleApi& vdb_module() {
 
 LoadedGrid load_density_grid(const std::string& path, const std::string& grid_name,
                              const std::string& context) {
+    // The common layouts without OpenVDB (vdb_direct.h); everything else, and every error,
+    // through it. KASUMI_VDB_DIRECT=0 always takes OpenVDB's path.
+    const char* direct = std::getenv("KASUMI_VDB_DIRECT");
+    if (!(direct && std::strcmp(direct, "0") == 0)) {
+        if (std::optional<LoadedGrid> loaded = read_density_grid_direct(path, grid_name))
+            return std::move(*loaded);
+    }
+    return load_density_grid_openvdb(path, grid_name, context);
+}
+
+LoadedGrid load_density_grid_openvdb(const std::string& path, const std::string& grid_name,
+                                     const std::string& context) {
     return vdb_module().load_density_grid(path, grid_name, context);
 }
 

@@ -10,7 +10,7 @@ namespace kasumi {
 
 /// Bumped whenever VdbModuleApi, LoadedGrid, DenseVoxels or DensityGrid change layout: a module
 /// from another build is refused instead of misread.
-constexpr int kVdbModuleAbi = 1;
+constexpr int kVdbModuleAbi = 2;
 
 /// The module's entry points (its own copies of load_density_grid and write_fog_volume).
 struct VdbModuleApi {

@@ -16,6 +16,7 @@ void write_fog_volume(const std::string& path, const std::string& grid_name,
     std::call_once(once, [] { openvdb::initialize(); });
     KASUMI_CHECK(voxels.values.size() ==
                  static_cast<size_t>(voxels.dims.x) * voxels.dims.y * voxels.dims.z);
+    KASUMI_CHECK(voxels.inactive.empty() || voxels.inactive.size() == voxels.values.size());
     auto grid = openvdb::FloatGrid::create(0.0f);
     grid->setName(grid_name);
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
@@ -28,17 +29,20 @@ void write_fog_volume(const std::string& path, const std::string& grid_name,
         for (int y = 0; y < voxels.dims.y; ++y)
             for (int x = 0; x < voxels.dims.x; ++x, ++i) {
                 const float v = voxels.values[i];
-                if (v != 0.0f) {
-                    accessor.setValue(openvdb::Coord(voxels.origin.x + x, voxels.origin.y + y,
-                                                     voxels.origin.z + z),
-                                      v);
-                }
+                const openvdb::Coord c(voxels.origin.x + x, voxels.origin.y + y,
+                                       voxels.origin.z + z);
+                if (!voxels.inactive.empty() && voxels.inactive[i])
+                    accessor.setValueOff(c, v);
+                else if (v != 0.0f)
+                    accessor.setValue(c, v);
             }
     if (constant_tiles)
         grid->tree().prune();  // tolerance 0: only nodes of one value and one active state
     AtomicFile out(path);
     try {
         openvdb::io::File file(out.temp_path());
+        if (voxels.compression >= 0)
+            file.setCompression(static_cast<uint32_t>(voxels.compression));
         file.write({grid});
         file.close();
     } catch (const openvdb::Exception& e) {

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # What a kasumi process loads: OpenVDB only through its module (libkasumi_vdb.so, dlopen'd on
 # the first .vdb read or write), so commands and scenes without grids never load it; a VDB scene
-# still renders through the module; a missing or foreign module is a clear runtime error (exit
-# 1) naming the paths tried, with no output written. OpenColorIO likewise (libkasumi_ocio.so,
+# in the common layout is read without it (volume/vdb_direct.h), and through it with
+# KASUMI_VDB_DIRECT=0 (also the path of every other layout); a missing or foreign module is a
+# clear runtime error (exit 1) naming the paths tried, with no output written. OpenColorIO likewise (libkasumi_ocio.so,
 # only for the PNG preview). And `--aovs none` writes exactly R, G, B, A.
 # usage: startup_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
@@ -40,7 +41,7 @@ KASUMI_OCIO_MODULE=/nonexistent/libkasumi_ocio.so expect_exit 1 \
 # Without grids the module is not needed at all.
 KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 0 "" -- render "$work/fog.json" -o "$work/fog2.exr" --no-preview -q
 
-# A grid scene loads the module and renders.
+# A grid scene renders without the module (the direct reader), and through it when told to.
 expect_exit 0 "" -- make-cloud --res 16 --seed 3 -o "$work/c16.vdb"
 cat >"$work/cloud.json" <<JSON
 {
@@ -51,11 +52,14 @@ cat >"$work/cloud.json" <<JSON
 }
 JSON
 libs=$(loaded_libs render "$work/cloud.json" -o "$work/cloud.exr" --no-preview -q)
-echo "$libs" | grep -q "kasumi_vdb" || fail "a grid scene did not load the module: $libs"
+echo "$libs" | grep -q "openvdb\|kasumi_vdb" && fail "the direct reader's grid loaded OpenVDB: $libs"
 [ -s "$work/cloud.exr" ] || fail "the grid scene wrote no image"
+libs=$(KASUMI_VDB_DIRECT=0 loaded_libs render "$work/cloud.json" -o "$work/cloud2.exr" --no-preview -q)
+echo "$libs" | grep -q "kasumi_vdb" || fail "KASUMI_VDB_DIRECT=0 did not load the module: $libs"
+[ -s "$work/cloud2.exr" ] || fail "the grid scene wrote no image through the module"
 
 # A missing module: exit 1, the path tried and the variable to set; nothing written.
-KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 1 \
+KASUMI_VDB_DIRECT=0 KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 1 \
   "OpenVDB module.*/nonexistent/libkasumi_vdb.so \(no such file\).*KASUMI_VDB_MODULE" -- \
   render "$work/cloud.json" -o "$work/missing.exr" --no-preview -q
 [ -e "$work/missing.exr" ] && fail "a render without its module wrote an image"
@@ -64,7 +68,7 @@ KASUMI_VDB_MODULE=/nonexistent/libkasumi_vdb.so expect_exit 1 "/nonexistent/libk
 [ -e "$work/none.vdb" ] && fail "make-cloud without its module wrote a grid"
 # A file that is not a loadable module.
 echo "not a library" >"$work/fake.so"
-KASUMI_VDB_MODULE="$work/fake.so" expect_exit 1 "OpenVDB module.*fake.so \(" -- \
+KASUMI_VDB_DIRECT=0 KASUMI_VDB_MODULE="$work/fake.so" expect_exit 1 "OpenVDB module.*fake.so \(" -- \
   check "$work/cloud.json"
 
 # exr_channels FILE: the channel names of an EXR header's chlist attribute, comma-separated

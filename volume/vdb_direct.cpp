@@ -1,0 +1,552 @@
+#include "volume/vdb_direct.h"
+
+#include "volume/density_grid_build.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "VDB files are little-endian");
+
+namespace kasumi {
+
+namespace {
+
+/// Thrown inside this file only: the file is not one this reader handles (or is broken).
+struct Declined {
+    std::string why;
+};
+[[noreturn]] void decline(std::string why) {
+    throw Declined{std::move(why)};
+}
+
+// io/Compression.h
+constexpr uint32_t kCompressZip = 0x1;
+constexpr uint32_t kCompressActiveMask = 0x2;
+constexpr uint32_t kCompressBlosc = 0x4;
+constexpr int8_t kNoMaskAndAllValues = 6;  // the only mask-compression code storing every value
+
+/// The file, mapped read-only.
+class MappedFile {
+  public:
+    explicit MappedFile(const std::string& path) {
+        m_fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (m_fd < 0)
+            decline("cannot open");
+        struct stat st {};
+        if (::fstat(m_fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size <= 0)
+            decline("not a regular, non-empty file");
+        m_size = static_cast<size_t>(st.st_size);
+        void* p = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, m_fd, 0);
+        if (p == MAP_FAILED)
+            decline("cannot map");
+        m_data = static_cast<const uint8_t*>(p);
+    }
+    ~MappedFile() {
+        if (m_data)
+            ::munmap(const_cast<uint8_t*>(m_data), m_size);
+        if (m_fd >= 0)
+            ::close(m_fd);
+    }
+    MappedFile(const MappedFile&) = delete;
+    MappedFile& operator=(const MappedFile&) = delete;
+    const uint8_t* data() const { return m_data; }
+    size_t size() const { return m_size; }
+
+  private:
+    int m_fd = -1;
+    const uint8_t* m_data = nullptr;
+    size_t m_size = 0;
+};
+
+/// A bounds-checked cursor over [0, size) of the mapped file.
+class Cursor {
+  public:
+    Cursor(const uint8_t* data, size_t size, size_t pos = 0) : m_data(data), m_size(size) {
+        seek(pos);
+    }
+    size_t pos() const { return m_pos; }
+    void seek(size_t pos) {
+        if (pos > m_size)
+            decline("a position past the end of the file");
+        m_pos = pos;
+    }
+    const uint8_t* take(uint64_t n) {
+        if (n > m_size - m_pos)
+            decline("truncated");
+        const uint8_t* p = m_data + m_pos;
+        m_pos += static_cast<size_t>(n);
+        return p;
+    }
+    template <class T>
+    T get() {
+        T v;
+        std::memcpy(&v, take(sizeof(T)), sizeof(T));
+        return v;
+    }
+    std::string string() {
+        const int32_t n = get<int32_t>();
+        if (n < 0)
+            decline("a negative string length");
+        const uint8_t* p = take(static_cast<uint64_t>(n));
+        return std::string(reinterpret_cast<const char*>(p), static_cast<size_t>(n));
+    }
+    /// MetaMap::readMeta: int32 count, then name, type name, int32 size and the value's bytes.
+    void skip_metadata() {
+        const int32_t n = get<int32_t>();
+        if (n < 0)
+            decline("a negative metadata count");
+        for (int32_t i = 0; i < n; ++i) {
+            string();
+            string();
+            const int32_t size = get<int32_t>();
+            if (size < 0)
+                decline("a negative metadata size");
+            take(static_cast<uint64_t>(size));
+        }
+    }
+
+  private:
+    const uint8_t* m_data;
+    size_t m_size;
+    size_t m_pos = 0;
+};
+
+/// libblosc, loaded on first use like OpenVDB itself (it is OpenVDB's own dependency, so it is
+/// installed wherever the module works); null when missing.
+struct Blosc {
+    int (*decompress_ctx)(const void* src, void* dest, size_t destsize, int threads) = nullptr;
+    int (*cbuffer_validate)(const void* src, size_t cbytes, size_t* nbytes) = nullptr;
+};
+const Blosc* blosc() {
+    static Blosc api;
+    static bool ok = false;
+    static std::once_flag once;
+    std::call_once(once, [] {
+        void* lib = ::dlopen("libblosc.so.1", RTLD_NOW | RTLD_LOCAL);
+        if (!lib)
+            return;
+        api.decompress_ctx =
+            reinterpret_cast<decltype(api.decompress_ctx)>(::dlsym(lib, "blosc_decompress_ctx"));
+        api.cbuffer_validate = reinterpret_cast<decltype(api.cbuffer_validate)>(
+            ::dlsym(lib, "blosc_cbuffer_validate"));
+        ok = api.decompress_ctx && api.cbuffer_validate;
+    });
+    return ok ? &api : nullptr;
+}
+
+/// io::readData for floats: `count` values into `out` (io/Compression.cc bloscFromStream,
+/// unzipFromStream). Blosc wins when both flags are set, as in OpenVDB.
+void read_data(Cursor& in, uint32_t compression, float* out, uint32_t count) {
+    const uint64_t bytes = uint64_t(count) * sizeof(float);
+    if (compression & (kCompressBlosc | kCompressZip)) {
+        const int64_t n = in.get<int64_t>();
+        if (n <= 0) {  // stored raw
+            if (static_cast<uint64_t>(-n) != bytes)
+                decline("a raw chunk of the wrong size");
+            std::memcpy(out, in.take(bytes), bytes);
+            return;
+        }
+        const uint8_t* src = in.take(static_cast<uint64_t>(n));
+        if (compression & kCompressBlosc) {
+            const Blosc* b = blosc();
+            if (!b)
+                decline("libblosc.so.1 is not available");
+            size_t nbytes = 0;
+            if (b->cbuffer_validate(src, static_cast<size_t>(n), &nbytes) != 0 || nbytes != bytes)
+                decline("a blosc chunk of the wrong size");
+            if (bytes > 0 && b->decompress_ctx(src, out, bytes, 1) != static_cast<int>(bytes))
+                decline("a broken blosc chunk");
+        } else {
+            uLongf len = static_cast<uLongf>(bytes);
+            if (::uncompress(reinterpret_cast<Bytef*>(out), &len, src, static_cast<uLong>(n)) !=
+                    Z_OK ||
+                len != bytes)
+                decline("a broken zip chunk");
+        }
+    } else {
+        std::memcpy(out, in.take(bytes), bytes);
+    }
+}
+
+uint32_t count_on(const uint64_t* words, int n_words) {
+    uint32_t c = 0;
+    for (int w = 0; w < n_words; ++w)
+        c += static_cast<uint32_t>(__builtin_popcountll(words[w]));
+    return c;
+}
+
+/// io::readCompressedValues for floats and a node of `count` values with value mask `mask`:
+/// fills the active values of `dest` (the inactive ones are left 0; a fog volume's are 0 or
+/// ignored). `scratch` holds at least `count` floats.
+void read_values(Cursor& in, uint32_t compression, float* dest, uint32_t count,
+                 const uint64_t* mask, float* scratch) {
+    const int8_t code = in.get<int8_t>();
+    if (code < 0 || code > kNoMaskAndAllValues)
+        decline("an unknown mask-compression code");
+    if (code == 2 || code == 4 || code == 5)  // one inactive value, or two
+        in.take(code == 5 ? 8 : 4);
+    if (code >= 3 && code <= 5)  // the selection mask between two inactive values
+        in.take(count / 8);
+    const int words = static_cast<int>(count / 64);
+    const bool compact = (compression & kCompressActiveMask) && code != kNoMaskAndAllValues;
+    const uint32_t stored = compact ? count_on(mask, words) : count;
+    if (stored == count) {
+        read_data(in, compression, dest, count);
+        return;
+    }
+    read_data(in, compression, scratch, stored);
+    std::fill(dest, dest + count, 0.0f);
+    uint32_t k = 0;
+    for (int w = 0; w < words; ++w) {
+        for (uint64_t word = mask[w]; word != 0; word &= word - 1)
+            dest[w * 64 + __builtin_ctzll(word)] = scratch[k++];
+    }
+}
+
+/// Skips what read_values reads, returning nothing; the position is kept for a later read.
+void skip_values(Cursor& in, uint32_t compression, uint32_t count, const uint64_t* mask) {
+    const int8_t code = in.get<int8_t>();
+    if (code < 0 || code > kNoMaskAndAllValues)
+        decline("an unknown mask-compression code");
+    if (code == 2 || code == 4 || code == 5)
+        in.take(code == 5 ? 8 : 4);
+    if (code >= 3 && code <= 5)
+        in.take(count / 8);
+    const bool compact = (compression & kCompressActiveMask) && code != kNoMaskAndAllValues;
+    const uint64_t stored = compact ? count_on(mask, static_cast<int>(count / 64)) : count;
+    if (compression & (kCompressBlosc | kCompressZip)) {
+        const int64_t n = in.get<int64_t>();
+        if (n <= 0 && static_cast<uint64_t>(-n) != stored * sizeof(float))
+            decline("a raw chunk of the wrong size");
+        in.take(static_cast<uint64_t>(n <= 0 ? -n : n));
+    } else {
+        in.take(stored * sizeof(float));
+    }
+}
+
+struct Tree {
+    uint32_t compression = 0;
+    std::vector<VoxelBlock> leaves;  ///< in file order (their values are read later)
+    std::vector<VoxelBlock> tiles;   ///< active tiles cut into 8³ blocks of one value
+    std::deque<std::vector<float>> tile_values;
+    uint64_t active_voxels = 0;
+    uint64_t active_tiles = 0;
+    IVec3 box_min{std::numeric_limits<int>::max()};
+    IVec3 box_max{std::numeric_limits<int>::min()};
+
+    void expand(IVec3 lo, IVec3 hi) {
+        box_min = glm::min(box_min, lo);
+        box_max = glm::max(box_max, hi);
+    }
+};
+
+/// A leaf's active-voxel box from its mask (offset = x << 6 | y << 3 | z: word x, byte y, bit z).
+void expand_by_leaf(Tree& tree, const VoxelBlock& leaf) {
+    int x0 = -1, x1 = -1;
+    uint64_t any = 0;
+    for (int x = 0; x < 8; ++x) {
+        if (leaf.active[x] != 0) {
+            x0 = x0 < 0 ? x : x0;
+            x1 = x;
+            any |= leaf.active[x];
+        }
+    }
+    if (x0 < 0)
+        return;
+    int y0 = 8, y1 = -1;
+    uint8_t zs = 0;
+    for (int y = 0; y < 8; ++y) {
+        const uint8_t byte = static_cast<uint8_t>(any >> (8 * y));
+        if (byte != 0) {
+            y0 = std::min(y0, y);
+            y1 = y;
+            zs |= byte;
+        }
+    }
+    const int z0 = __builtin_ctz(zs), z1 = 31 - __builtin_clz(zs);
+    tree.expand(leaf.origin + IVec3(x0, y0, z0), leaf.origin + IVec3(x1, y1, z1));
+}
+
+/// InternalNode<ChildT, Log2>::readTopology (file format >= 222), children read recursively.
+template <int Log2>
+void read_internal(Cursor& in, Tree& tree, IVec3 origin, std::vector<float>& values) {
+    constexpr uint32_t kCount = 1u << (3 * Log2);
+    constexpr int kWords = kCount / 64;
+    constexpr int kChildTotal = Log2 == 5 ? 7 : 3;  // log2 of a child's edge in voxels
+    uint64_t child_mask[kWords], value_mask[kWords];
+    std::memcpy(child_mask, in.take(sizeof(child_mask)), sizeof(child_mask));
+    std::memcpy(value_mask, in.take(sizeof(value_mask)), sizeof(value_mask));
+    values.resize(2 * kCount);
+    read_values(in, tree.compression, values.data(), kCount, value_mask, values.data() + kCount);
+    auto local = [](uint32_t i) {
+        return IVec3(static_cast<int>(i >> (2 * Log2)),
+                     static_cast<int>((i >> Log2) & ((1u << Log2) - 1)),
+                     static_cast<int>(i & ((1u << Log2) - 1)));
+    };
+    // Active tiles: cut into 8³ blocks of one value, as vdb_read.cpp does.
+    for (int w = 0; w < kWords; ++w) {
+        for (uint64_t word = value_mask[w] & ~child_mask[w]; word != 0; word &= word - 1) {
+            const uint32_t i = static_cast<uint32_t>(w * 64 + __builtin_ctzll(word));
+            const IVec3 lo = origin + (local(i) << kChildTotal);
+            const int edge = 1 << kChildTotal;
+            tree.tile_values.emplace_back(VoxelBlock::kVoxels, values[i]);
+            ++tree.active_tiles;
+            tree.active_voxels += uint64_t(edge) * edge * edge;
+            tree.expand(lo, lo + IVec3(edge - 1));
+            VoxelBlock block;
+            block.values = tree.tile_values.back().data();
+            block.active.fill(~uint64_t(0));
+            for (int z = 0; z < edge; z += VoxelBlock::kEdge)
+                for (int y = 0; y < edge; y += VoxelBlock::kEdge)
+                    for (int x = 0; x < edge; x += VoxelBlock::kEdge) {
+                        block.origin = lo + IVec3(x, y, z);
+                        tree.tiles.push_back(block);
+                    }
+        }
+    }
+    for (int w = 0; w < kWords; ++w) {
+        for (uint64_t word = child_mask[w]; word != 0; word &= word - 1) {
+            const uint32_t i = static_cast<uint32_t>(w * 64 + __builtin_ctzll(word));
+            const IVec3 child = origin + (local(i) << kChildTotal);
+            if constexpr (Log2 == 5) {
+                read_internal<4>(in, tree, child, values);
+            } else {
+                VoxelBlock leaf;  // LeafNode::readTopology: its value mask
+                leaf.origin = child;
+                std::memcpy(leaf.active.data(), in.take(sizeof(leaf.active)), sizeof(leaf.active));
+                tree.leaves.push_back(leaf);
+            }
+        }
+    }
+}
+
+/// Math/Maps.h: the map's type name, then its doubles; the matrix maps index to world for row
+/// vectors (world = index * M), stored as index_to_world[i][j] = M(i, j) like vdb_read.cpp.
+glm::dmat4 read_transform(Cursor& in) {
+    const std::string type = in.string();
+    auto vec3 = [&in] {
+        double v[3];
+        std::memcpy(v, in.take(sizeof(v)), sizeof(v));
+        return glm::dvec3(v[0], v[1], v[2]);
+    };
+    glm::dmat4 m(1.0);
+    if (type == "AffineMap") {
+        double a[16];  // Mat4d, row-major
+        std::memcpy(a, in.take(sizeof(a)), sizeof(a));
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                m[i][j] = a[4 * i + j];
+    } else if (type == "ScaleMap" || type == "UniformScaleMap") {
+        const glm::dvec3 s = vec3();
+        in.take(4 * 3 * sizeof(double));  // voxel size, inverse scale, its square, 1 / (2 scale)
+        m[0][0] = s.x;
+        m[1][1] = s.y;
+        m[2][2] = s.z;
+    } else if (type == "ScaleTranslateMap" || type == "UniformScaleTranslateMap") {
+        const glm::dvec3 t = vec3();
+        const glm::dvec3 s = vec3();
+        in.take(4 * 3 * sizeof(double));
+        m[0][0] = s.x;
+        m[1][1] = s.y;
+        m[2][2] = s.z;
+        m[3] = glm::dvec4(t, 1.0);
+    } else if (type == "TranslationMap") {
+        m[3] = glm::dvec4(vec3(), 1.0);
+    } else {
+        decline("map " + type);
+    }
+    return m;
+}
+
+/// Asks for transparent huge pages on the 2 MB-aligned part of a large buffer before it is
+/// first touched (as density_grid_build.cpp does for the bricks): fewer page faults.
+void advise_huge_pages(void* data, size_t bytes) {
+#ifdef MADV_HUGEPAGE
+    constexpr uintptr_t kHuge = uintptr_t(2) << 20;
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kHuge - 1);
+    if (end > begin)
+        ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+    (void)data;
+    (void)bytes;
+#endif
+}
+
+struct Descriptor {
+    std::string name, type;
+    bool half = false, instance = false;
+    uint64_t grid = 0, block = 0, end = 0;
+};
+
+LoadedGrid read_grid(const std::string& path, const std::string& wanted) {
+    const MappedFile file(path);
+    Cursor in(file.data(), file.size());
+    if (in.get<int64_t>() != 0x56444220)  // "VDB "
+        decline("not a VDB file");
+    const uint32_t version = in.get<uint32_t>();
+    if (version < 222 || version > 224)  // node-mask compression .. OpenVDB 11's format
+        decline("file format " + std::to_string(version));
+    in.take(8);  // library major and minor version
+    if (in.get<uint8_t>() == 0)
+        decline("no grid offsets");
+    in.take(36);  // UUID
+    in.skip_metadata();
+    const int32_t count = in.get<int32_t>();
+    if (count < 0)
+        decline("a negative grid count");
+    std::vector<Descriptor> grids(static_cast<size_t>(std::min(count, 1 << 16)));
+    if (static_cast<int32_t>(grids.size()) != count)
+        decline("too many grids");
+    static const std::string kHalf = "_HalfFloat";
+    for (Descriptor& d : grids) {
+        d.name = in.string();
+        d.type = in.string();
+        if (d.type.size() > kHalf.size() &&
+            d.type.compare(d.type.size() - kHalf.size(), kHalf.size(), kHalf) == 0) {
+            d.half = true;
+            d.type.resize(d.type.size() - kHalf.size());
+        }
+        d.instance = !in.string().empty();
+        const auto grid = in.get<int64_t>(), block = in.get<int64_t>(), end = in.get<int64_t>();
+        if (grid < 0 || block < grid || end < block || static_cast<uint64_t>(end) > file.size())
+            decline("grid positions outside the file");
+        d.grid = static_cast<uint64_t>(grid);
+        d.block = static_cast<uint64_t>(block);
+        d.end = static_cast<uint64_t>(end);
+        if (d.name.find('\x1e') != std::string::npos)  // a suffixed duplicate name
+            decline("several grids of one name");
+    }
+    // The grid vdb_read.cpp picks: the one named; else "density"; else the first float grid in
+    // name order (OpenVDB's File::beginName iterates a map sorted by name).
+    const Descriptor* d = nullptr;
+    const std::string name = wanted.empty() ? std::string("density") : wanted;
+    for (const Descriptor& g : grids)
+        if (g.name == name)
+            d = &g;
+    if (!d && wanted.empty()) {
+        for (const Descriptor& g : grids)
+            if (g.type == "Tree_float_5_4_3" && (!d || g.name < d->name))
+                d = &g;
+    }
+    if (!d)
+        decline("no such grid");
+    if (d->type != "Tree_float_5_4_3" || d->half || d->instance)
+        decline("grid type " + d->type + (d->half ? " (half)" : "") +
+                (d->instance ? " (an instance)" : ""));
+
+    LoadedGrid loaded;
+    loaded.grid_name = d->name;
+    in.seek(d->grid);
+    Tree tree;
+    tree.compression = in.get<uint32_t>();
+    if (tree.compression & ~(kCompressZip | kCompressActiveMask | kCompressBlosc))
+        decline("unknown compression flags");
+    in.skip_metadata();
+    loaded.index_to_world = read_transform(in);
+    if (in.get<int32_t>() != 1)
+        decline("a buffer count other than 1");
+    const float background = in.get<float>();
+    if (background != 0.0f)
+        decline("a non-zero background");
+    const uint32_t root_tiles = in.get<uint32_t>(), root_children = in.get<uint32_t>();
+    for (uint32_t i = 0; i < root_tiles; ++i) {
+        in.take(3 * sizeof(int32_t) + sizeof(float));
+        if (in.get<uint8_t>() != 0)
+            decline("an active root tile");
+    }
+    tree.leaves.reserve((d->block - in.pos()) /
+                        sizeof(VoxelBlock::active));  // a bound: 64-byte masks
+    std::vector<float> scratch;
+    for (uint32_t i = 0; i < root_children; ++i) {
+        int32_t o[3];
+        std::memcpy(o, in.take(sizeof(o)), sizeof(o));
+        read_internal<5>(in, tree, IVec3(o[0], o[1], o[2]), scratch);
+    }
+    if (in.pos() != d->block)
+        decline("the topology does not end where the grid's data start");
+
+    // Leaf values (LeafNode::readBuffers): found in order, then decompressed in parallel. The
+    // value mask stored again here is skipped, as OpenVDB does on a seekable stream.
+    const size_t leaves = tree.leaves.size();
+    std::vector<size_t> values_at(leaves);
+    for (size_t i = 0; i < leaves; ++i) {
+        in.take(sizeof(VoxelBlock::active));
+        values_at[i] = in.pos();
+        skip_values(in, tree.compression, VoxelBlock::kVoxels, tree.leaves[i].active.data());
+        expand_by_leaf(tree, tree.leaves[i]);
+        tree.active_voxels += count_on(tree.leaves[i].active.data(), 8);
+    }
+    if (in.pos() != d->end)
+        decline("the leaves do not end where the grid does");
+    loaded.active_voxels = tree.active_voxels;
+    loaded.active_tiles = tree.active_tiles;
+    if (tree.active_voxels == 0) {
+        loaded.grid = std::make_shared<DensityGrid>();
+        return loaded;
+    }
+
+    const size_t floats = leaves * VoxelBlock::kVoxels;
+    std::unique_ptr<float[]> values(new float[floats]);  // every float is written below
+    advise_huge_pages(values.get(), floats * sizeof(float));
+    std::atomic<bool> broken{false};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          float buffer[VoxelBlock::kVoxels];
+                          try {
+                              for (size_t i = r.begin(); i != r.end(); ++i) {
+                                  Cursor c(file.data(), file.size(), values_at[i]);
+                                  float* dest = values.get() + i * VoxelBlock::kVoxels;
+                                  read_values(c, tree.compression, dest, VoxelBlock::kVoxels,
+                                              tree.leaves[i].active.data(), buffer);
+                              }
+                          } catch (const Declined&) {
+                              broken = true;
+                          }
+                      });
+    if (broken)
+        decline("a broken leaf");
+    std::vector<VoxelBlock> blocks = std::move(tree.leaves);
+    for (size_t i = 0; i < leaves; ++i)
+        blocks[i].values = values.get() + i * VoxelBlock::kVoxels;
+    blocks.insert(blocks.end(), tree.tiles.begin(), tree.tiles.end());
+    DensityGridBuild built = DensityGridBuilder::build(tree.box_min, tree.box_max, blocks);
+    if (built.has_invalid)
+        decline("an invalid voxel");  // OpenVDB's path names it
+    loaded.grid = std::move(built.grid);
+    return loaded;
+}
+
+}  // namespace
+
+std::optional<LoadedGrid> read_density_grid_direct(const std::string& path,
+                                                   const std::string& grid_name,
+                                                   std::string* why_not) {
+    try {
+        return read_grid(path, grid_name);
+    } catch (const Declined& e) {
+        if (why_not)
+            *why_not = e.why;
+        return std::nullopt;
+    }
+}
+
+}  // namespace kasumi
