@@ -100,6 +100,8 @@ RenderSettings parse_render(const JsonNode& node) {
             render.volume.light_cache = cache->as_bool();
         if (auto points = volume.optional("nee_points"))
             render.volume.nee_points = parse_int_in(*points, 0, 64);
+        if (auto intervals = volume.optional("shadow_intervals"))
+            render.volume.shadow_intervals = parse_int_in(*intervals, 0, 4096);
         if (auto roulette = volume.optional("nee_roulette"))
             render.volume.nee_roulette = roulette->as_bool();
         if (auto sampling = volume.optional("light_sampling"))

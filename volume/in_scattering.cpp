@@ -3,6 +3,7 @@
 #include "volume/equiangular.h"
 #include "volume/gauss_interpolant.h"
 #include "volume/march_walk.h"
+#include "volume/shadow_intervals.h"
 
 #include <array>
 #include <cmath>
@@ -114,6 +115,89 @@ float max_scattering_transmittance(const MediumInterval& interval, const Rgb& tr
     return t;
 }
 
+/// F(theta) of point_light_scattering without visibility, at the point x a shadow ray starts
+/// from.
+struct AirlightSample {
+    Rgb f{0.0f};
+    Vec3 x{0.0f};
+};
+
+/// One point light's share of point_light_scattering over one equiangular segment, with an
+/// N-node interpolant; returns the integral over theta (the caller applies t_start).
+template <int N>
+Rgb point_light_segment(const MediumSet& media, const MediumInterval& interval,
+                        const PointLight& light, bool casts_shadows,
+                        const OcclusionQuery* occlusion, const Ray& ray,
+                        const EquiangularSegment& segment, float t0, int samples,
+                        int shadow_intervals, Pcg32& rng, VolumeCounters& counters) {
+    const Vec3 wo = -ray.direction;
+    // I / r² times dt/dtheta = d / cos² theta is I / d: r = d / cos theta.
+    const Rgb intensity_over_d = light.intensity / segment.d;
+    auto point_at = [&](float theta, Vec3& x) {
+        const float t = segment.delta + segment.d * std::tan(theta);
+        x = ray.at(t);
+        return t;
+    };
+    auto integrand = [&](float theta) {
+        AirlightSample s;
+        const float t = point_at(theta, s.x);
+        if (!std::isfinite(t))
+            return s;
+        const Vec3 to_light = light.position - s.x;
+        const float r2 = glm::dot(to_light, to_light);
+        if (!(r2 > 1e-12f))  // as point_source_incident: no light from 1 µm away
+            return s;
+        const float r = std::sqrt(r2);
+        const Vec3 wi = to_light / r;
+        const Rgb scatter = media.scattering(interval, scattering_cosine(wo, wi));
+        if (is_black(scatter))
+            return s;
+        // Camera transmittance from t0 and the light's through every medium, one exp.
+        const Rgb tau = media.optical_depth(Ray{s.x, wi, 0.0f, r}) + interval.sigma_t * (t - t0);
+        const Rgb transmittance =
+            tau.r == tau.g && tau.g == tau.b ? Rgb(std::exp(-tau.r)) : exp_neg(tau);
+        s.f = scatter * intensity_over_d * transmittance;
+        return s;
+    };
+    auto visible = [&](const Vec3& x) {
+        if (occlusion == nullptr || !casts_shadows)
+            return true;
+        ++counters.shadow_rays;
+        return !occlusion->occluded(x, light.position);
+    };
+
+    std::array<Rgb, N> at_nodes;
+    for (int k = 0; k < N; ++k) {
+        at_nodes[k] =
+            integrand(GaussLegendreInterpolantN<N>::node(k, segment.theta_a, segment.theta_b)).f;
+    }
+    counters.steps += N;
+    GaussLegendreInterpolantN<N> control;
+    control.set(segment.theta_a, segment.theta_b, at_nodes);
+    const float span = segment.theta_b - segment.theta_a;
+
+    if (shadow_intervals > 0 && occlusion != nullptr && casts_shadows) {
+        return lit_interval_integral(control, segment.theta_a, segment.theta_b, shadow_intervals,
+                                     [&](float theta) {
+                                         Vec3 x;
+                                         point_at(theta, x);
+                                         return visible(x);
+                                     });
+    }
+    const float u = rng.next_float();
+    Rgb residual(0.0f);
+    for (int j = 0; j < samples; ++j) {
+        const float theta =
+            segment.theta_a + span * ((static_cast<float>(j) + u) / static_cast<float>(samples));
+        ++counters.steps;
+        const AirlightSample s = integrand(theta);
+        residual -= control(theta);
+        if (!is_black(s.f) && visible(s.x))
+            residual += s.f;
+    }
+    return control.integral() + span * residual / static_cast<float>(samples);
+}
+
 /// Point lights' single scattering over [t0, t1] of a stretch by stratified equiangular
 /// sampling with a control variate: `budget` shadow-ray samples shared among the lights in
 /// proportion to their unattenuated inverse-square integrals (at least one each).
@@ -131,10 +215,13 @@ float max_scattering_transmittance(const MediumInterval& interval, const Rgb& tr
 /// of Sun et al. 2005 ("A Practical Analytic Single Scattering Model for Real Time Rendering"),
 /// integrated numerically so that any phase function and lights outside the fog are exact.
 /// Where every sample is shadowed the estimate can be slightly negative (unbiased).
+/// With settings.shadow_intervals > 0 the shadow-ray samples are replaced by the lit
+/// intervals (lit_interval_integral): deterministic and biased, bounds in shadow_intervals.h.
 Rgb point_light_scattering(const MediumSet& media, const MediumInterval& interval,
                            const std::vector<const Light*>& point_lights,
                            const OcclusionQuery* occlusion, const Ray& ray, float t0, float t1,
-                           const Rgb& t_start, int budget, Pcg32& rng, VolumeCounters& counters) {
+                           const Rgb& t_start, int budget, const VolumeSettings& settings,
+                           Pcg32& rng, VolumeCounters& counters) {
     constexpr size_t kMaxLights = 64;
     const size_t n = std::min(point_lights.size(), kMaxLights);
     EquiangularSegment segments[kMaxLights];
@@ -149,53 +236,17 @@ Rgb point_light_scattering(const MediumSet& media, const MediumInterval& interva
     Rgb radiance(0.0f);
     if (!(total > 0.0f))
         return radiance;
-    const Vec3 wo = -ray.direction;
-    GaussLegendreInterpolant control;
     for (size_t i = 0; i < n; ++i) {
         if (!(weights[i] > 0.0f))
             continue;
         const EquiangularSegment& segment = segments[i];
-        const Light& light = *point_lights[i];
-        // F(theta) without visibility, at the point x where a shadow ray would start.
-        struct Sample {
-            Rgb f{0.0f};
-            Vec3 x{0.0f};
-            LightContribution light;
-        };
-        auto integrand = [&](float theta) {
-            Sample s;
-            const float tan_theta = std::tan(theta);
-            const float t = segment.delta + segment.d * tan_theta;
-            if (!std::isfinite(t))
-                return s;
-            s.x = ray.at(t);
-            s.light = unshadowed(media, interval, light, s.x, wo, rng);
-            const float dt_dtheta = segment.d * (1.0f + tan_theta * tan_theta);
-            s.f = exp_neg(interval.sigma_t * (t - t0)) * s.light.value * dt_dtheta;
-            return s;
-        };
-        std::array<Rgb, GaussLegendreInterpolant::kNodes> at_nodes;
-        for (int k = 0; k < GaussLegendreInterpolant::kNodes; ++k) {
-            at_nodes[k] =
-                integrand(GaussLegendreInterpolant::node(k, segment.theta_a, segment.theta_b)).f;
-        }
-        counters.steps += GaussLegendreInterpolant::kNodes;
-        control.set(segment.theta_a, segment.theta_b, at_nodes);
-
-        const float span = segment.theta_b - segment.theta_a;
+        const PointLight& light = std::get<PointLight>(point_lights[i]->emitter);
+        const bool casts_shadows = point_lights[i]->shadows != ShadowMode::None;
         const int samples = std::max(1, static_cast<int>(std::lround(budget * weights[i] / total)));
-        const float u = rng.next_float();
-        Rgb residual(0.0f);
-        for (int j = 0; j < samples; ++j) {
-            const float theta = segment.theta_a +
-                                span * ((static_cast<float>(j) + u) / static_cast<float>(samples));
-            ++counters.steps;
-            const Sample s = integrand(theta);
-            residual -= control(theta);
-            if (!is_black(s.f) && !blocked(occlusion, s.x, s.light, counters))
-                residual += s.f;
-        }
-        radiance += t_start * (control.integral() + span * residual / static_cast<float>(samples));
+        const Rgb integral = point_light_segment<GaussLegendreInterpolant::kNodes>(
+            media, interval, light, casts_shadows, occlusion, ray, segment, t0, samples,
+            settings.shadow_intervals, rng, counters);
+        radiance += t_start * integral;
     }
     return radiance;
 }
@@ -270,7 +321,7 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
             if (!point_lights.empty() && n_steps > 0) {
                 result.radiance += point_light_scattering(
                     media, interval, point_lights, occlusion, ray, interval.t0,
-                    interval.t0 + march_length, transmittance, n_steps, rng, counters);
+                    interval.t0 + march_length, transmittance, n_steps, settings, rng, counters);
             }
         }
         for (int c = 0; c < 3; ++c) {

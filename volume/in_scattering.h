@@ -52,6 +52,11 @@ struct VolumeSettings {
     /// estimation at this many collisions per path segment (volume/volume_path.cpp,
     /// tracked_path_radiance); 0: one free-flight scattering point per segment.
     int nee_points = 0;
+    /// > 0: point lights' shadows by the lit intervals along the ray (K = this many equal
+    /// parts of the equiangular span, bisection at each lit/shadow boundary, the interpolant
+    /// integrated exactly over the lit parts; volume/shadow_intervals.h): deterministic,
+    /// biased as bounded there. 0: stratified shadow-ray samples (unbiased).
+    int shadow_intervals = 0;
 };
 
 struct VolumeResult {
