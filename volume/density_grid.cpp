@@ -5,7 +5,43 @@
 #include <algorithm>
 #include <limits>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 namespace kasumi {
+
+namespace {
+
+/// The least and greatest of a brick's kBrickVoxels floats (finite, >= 0 and never -0: the
+/// builders store no zero but the initial +0), four at a time where SSE is available: the same
+/// values as std::minmax_element, at a fraction of its CPU (the load of a 512³ cloud).
+void brick_extremes(const float* v, float& lo, float& hi) {
+    constexpr int n = DensityGrid::kBrickVoxels;
+    int i = 0;
+#ifdef __SSE2__
+    __m128 mn = _mm_loadu_ps(v), mx = mn;
+    for (i = 4; i + 4 <= n; i += 4) {
+        const __m128 x = _mm_loadu_ps(v + i);
+        mn = _mm_min_ps(mn, x);
+        mx = _mm_max_ps(mx, x);
+    }
+    float a[4], b[4];
+    _mm_storeu_ps(a, mn);
+    _mm_storeu_ps(b, mx);
+    lo = std::min(std::min(a[0], a[1]), std::min(a[2], a[3]));
+    hi = std::max(std::max(b[0], b[1]), std::max(b[2], b[3]));
+#else
+    lo = hi = v[0];
+    i = 1;
+#endif
+    for (; i < n; ++i) {
+        lo = std::min(lo, v[i]);
+        hi = std::max(hi, v[i]);
+    }
+}
+
+}  // namespace
 
 DensityGrid::DensityGrid(IVec3 index_min, IVec3 index_max) {
     KASUMI_CHECK(index_min.x <= index_max.x && index_min.y <= index_max.y &&
@@ -62,10 +98,11 @@ void DensityGrid::finalize() {
         const float* v = &m_voxels[static_cast<size_t>(m_brick_index[slot]) * kBrickVoxels];
         // Trilinear interpolation is a convex combination of the 8 corners, so the extremes of
         // the stored 9³ voxels bound the density everywhere inside the brick exactly.
-        const auto [lo, hi] = std::minmax_element(v, v + kBrickVoxels);
-        m_brick_min[slot] = *lo;
-        m_brick_max[slot] = *hi;
-        m_max_density = std::max(m_max_density, *hi);
+        float lo = 0.0f, hi = 0.0f;
+        brick_extremes(v, lo, hi);
+        m_brick_min[slot] = lo;
+        m_brick_max[slot] = hi;
+        m_max_density = std::max(m_max_density, hi);
     }
 }
 

@@ -9,11 +9,48 @@
 #include "core/math.h"
 
 #include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <utility>
 #include <vector>
 
 namespace kasumi {
 
 using IVec3 = glm::ivec3;
+
+/// An allocator whose memory starts zeroed (calloc: large blocks are fresh pages from the
+/// kernel, never written) and whose default-inserted elements are left as they are: resizing a
+/// new vector of floats to n gives n zeros without writing them. Explicit values (resize(n, v),
+/// assign, push_back) are written as usual.
+template <class T>
+struct ZeroedAllocator {
+    using value_type = T;
+    ZeroedAllocator() = default;
+    template <class U>
+    ZeroedAllocator(const ZeroedAllocator<U>&) noexcept {}
+    T* allocate(size_t n) {
+        if (void* p = std::calloc(n, sizeof(T)))
+            return static_cast<T*>(p);
+        throw std::bad_alloc();
+    }
+    void deallocate(T* p, size_t) noexcept { std::free(p); }
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;  // default-initialised: the zeros calloc gave
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+    template <class U>
+    bool operator==(const ZeroedAllocator<U>&) const noexcept {
+        return true;
+    }
+    template <class U>
+    bool operator!=(const ZeroedAllocator<U>&) const noexcept {
+        return false;
+    }
+};
 
 /// One stretch [t0, t1] of a ray inside one non-empty brick, with bounds of the density there.
 struct BrickSpan {
@@ -118,9 +155,9 @@ class DensityGrid {
     IVec3 m_bricks{0};  ///< bricks per axis
     Vec3 m_cells_f{0.0f};
     std::vector<int32_t> m_brick_index;  ///< per brick slot: storage index, or -1 (all zero)
-    std::vector<float> m_voxels;         ///< kBrickVoxels floats per allocated brick
-    std::vector<float> m_brick_max;      ///< per brick slot
-    std::vector<float> m_brick_min;      ///< per brick slot
+    std::vector<float, ZeroedAllocator<float>> m_voxels;  ///< kBrickVoxels per allocated brick
+    std::vector<float> m_brick_max;                       ///< per brick slot
+    std::vector<float> m_brick_min;                       ///< per brick slot
     size_t m_allocated = 0;
     float m_max_density = 0.0f;
 };

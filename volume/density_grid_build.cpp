@@ -22,57 +22,37 @@ int floor_div(int a, int b) {
     return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
-/// Where a block's voxels go. Brick b holds the voxels whose local index (index - grid origin)
-/// lies in [8b, 8b + 8]: its own 8 plus the apron, the first voxel of brick b + 1. So voxel l
-/// goes to brick floor(l / 8) at position l mod 8 and, when l mod 8 = 0, also to brick
-/// l / 8 - 1 at position 8 (DensityGrid::set does the same). For the 8 voxels l0 .. l0 + 7 of a
-/// block that means bricks base and base + 1 per axis, base = floor((l0 - 1) / 8).
-struct BlockLayout {
-    IVec3 base;  ///< brick of offset (0, 0, 0) of the block's 2×2×2 bricks
-    /// Per axis a and voxel i of the block: which of the two bricks receive it (bit o for brick
-    /// base + o) and its position in the primary brick base + primary (the apron copy, if any,
-    /// goes to brick base at position kBrick).
-    uint8_t bricks[3][VoxelBlock::kEdge];
-    uint8_t primary[3][VoxelBlock::kEdge];
-    uint8_t position[3][VoxelBlock::kEdge];
-    /// The same as masks over the 8 bricks, bit ox + 2 oy + 4 oz: and-ing one entry per axis
-    /// gives the bricks a voxel touches.
-    uint8_t brick_mask[3][VoxelBlock::kEdge];
+/// Where a block's voxels go. Brick B holds the voxels whose local index l (index - grid origin)
+/// lies in [8B, 8B + 8]: its own 8 plus the apron, the first voxel of brick B + 1 (DensityGrid::set
+/// does the same). For the 8 voxels l0 .. l0 + 7 of a block that means bricks base and base + 1
+/// per axis, base = floor((l0 - 1) / 8): 8 bricks k = ox + 2 oy + 4 oz, and into brick k go the
+/// block's voxels i with lo <= i <= hi per axis, at position i + shift.
+struct BlockBricks {
+    IVec3 base;
+    IVec3 lo[8], hi[8], shift[8];
+    bool any[8];  ///< whether brick k receives any voxel of the block at all
 
-    BlockLayout(IVec3 local0) {
-        static constexpr uint8_t kLow[3] = {0x55, 0x33, 0x0F};   // bricks with o_a = 0
-        static constexpr uint8_t kHigh[3] = {0xAA, 0xCC, 0xF0};  // bricks with o_a = 1
-        for (int a = 0; a < 3; ++a) {
+    explicit BlockBricks(IVec3 local0) {
+        for (int a = 0; a < 3; ++a)
             base[a] = floor_div(local0[a] - 1, kBrick);
-            for (int i = 0; i < VoxelBlock::kEdge; ++i) {
-                const int l = local0[a] + i;
-                const int o = floor_div(l, kBrick) - base[a];  // 0 or 1
-                const int p = l - kBrick * (base[a] + o);      // l mod 8
-                const bool apron = p == 0 && o == 1;
-                bricks[a][i] = static_cast<uint8_t>((1 << o) | (apron ? 1 : 0));
-                primary[a][i] = static_cast<uint8_t>(o);
-                position[a][i] = static_cast<uint8_t>(p);
-                brick_mask[a][i] = static_cast<uint8_t>(((bricks[a][i] & 1) ? kLow[a] : 0) |
-                                                        ((bricks[a][i] & 2) ? kHigh[a] : 0));
-            }
+        for (int k = 0; k < 8; ++k) {
+            const IVec3 o(k & 1, (k >> 1) & 1, k >> 2);
+            shift[k] = local0 - kBrick * (base + o);
+            lo[k] = glm::max(IVec3(0), -shift[k]);
+            hi[k] = glm::min(IVec3(VoxelBlock::kEdge - 1), IVec3(kBrick) - shift[k]);
+            any[k] = lo[k].x <= hi[k].x && lo[k].y <= hi[k].y && lo[k].z <= hi[k].z;
         }
+    }
+    /// The block's voxel bits (offset x << 6 | y << 3 | z, word x) that go to brick k, for the
+    /// given word: bytes y in [lo.y, hi.y], bits z in [lo.z, hi.z].
+    uint64_t yz_mask(int k) const {
+        const uint64_t z_bits = ((uint64_t(2) << hi[k].z) - 1) & ~((uint64_t(1) << lo[k].z) - 1);
+        uint64_t m = 0;
+        for (int y = lo[k].y; y <= hi[k].y; ++y)
+            m |= z_bits << (8 * y);
+        return m;
     }
 };
-
-/// Calls f(offset, value) for every active voxel of `block`, in offset order, until f
-/// returns false.
-template <typename F>
-void for_each_active(const VoxelBlock& block, F&& f) {
-    for (int w = 0; w < static_cast<int>(block.active.size()); ++w) {
-        uint64_t word = block.active[w];
-        while (word != 0) {
-            const int n = w * 64 + __builtin_ctzll(word);
-            word &= word - 1;
-            if (!f(n, block.values[n]))
-                return;
-        }
-    }
-}
 
 /// Asks the kernel to back the 2 MB-aligned part of [data, data + bytes) with transparent huge
 /// pages before it is first touched: filling the brick storage (tens to hundreds of MB) then
@@ -107,19 +87,33 @@ DensityGridBuild DensityGridBuilder::build(IVec3 index_min, IVec3 index_max,
         tbb::blocked_range<size_t>(0, count), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t b = r.begin(); b != r.end(); ++b) {
                 const VoxelBlock& block = blocks[b];
-                const BlockLayout layout(block.origin - grid->m_origin);
+                // The non-zero active voxels, checking each active one in offset order.
+                uint64_t nonzero[VoxelBlock::kEdge] = {};
+                for (int w = 0; w < VoxelBlock::kEdge && invalid_at[b] < 0; ++w) {
+                    for (uint64_t word = block.active[w]; word != 0; word &= word - 1) {
+                        const int n = w * 64 + __builtin_ctzll(word);
+                        const float v = block.values[n];
+                        if (!(v >= 0.0f && v <= FLT_MAX)) {  // NaN, infinite or negative
+                            invalid_at[b] = n;
+                            break;
+                        }
+                        if (v != 0.0f)
+                            nonzero[w] |= word & (~word + 1);  // the lowest set bit: n
+                    }
+                }
+                const BlockBricks bricks(block.origin - grid->m_origin);
                 uint8_t mask = 0;
-                for_each_active(block, [&](int n, float v) {
-                    if (!(v >= 0.0f && v <= FLT_MAX)) {  // NaN, infinite or negative
-                        invalid_at[b] = n;
-                        return false;
+                for (int k = 0; k < 8; ++k) {
+                    if (!bricks.any[k])
+                        continue;
+                    const uint64_t yz = bricks.yz_mask(k);
+                    for (int x = bricks.lo[k].x; x <= bricks.hi[k].x; ++x) {
+                        if (nonzero[x] & yz) {
+                            mask |= static_cast<uint8_t>(1 << k);
+                            break;
+                        }
                     }
-                    if (v != 0.0f) {
-                        mask |= layout.brick_mask[0][n >> 6] & layout.brick_mask[1][(n >> 3) & 7] &
-                                layout.brick_mask[2][n & 7];
-                    }
-                    return true;
-                });
+                }
                 touched[b] = mask;
             }
         });
@@ -139,7 +133,7 @@ DensityGridBuild DensityGridBuilder::build(IVec3 index_min, IVec3 index_max,
     for (size_t b = 0; b < count; ++b) {
         if (touched[b] == 0)
             continue;
-        const IVec3 base = BlockLayout(blocks[b].origin - grid->m_origin).base;
+        const IVec3 base = BlockBricks(blocks[b].origin - grid->m_origin).base;
         for (int k = 0; k < 8; ++k) {
             if (touched[b] & (1 << k))
                 index[grid->brick_slot(base + IVec3(k & 1, (k >> 1) & 1, k >> 2))] = 0;
@@ -154,7 +148,7 @@ DensityGridBuild DensityGridBuilder::build(IVec3 index_min, IVec3 index_max,
     const size_t floats = grid->m_allocated * DensityGrid::kBrickVoxels;
     grid->m_voxels.reserve(floats);
     advise_huge_pages(grid->m_voxels.data(), floats * sizeof(float));
-    grid->m_voxels.assign(floats, 0.0f);
+    grid->m_voxels.resize(floats);  // zeros from calloc, not written (ZeroedAllocator)
 
     // Pass 2 (parallel): copy each block's voxels into its bricks and their aprons. Every
     // (brick, position) belongs to exactly one voxel, so blocks write disjoint floats.
@@ -164,37 +158,36 @@ DensityGridBuild DensityGridBuilder::build(IVec3 index_min, IVec3 index_max,
                 if (touched[b] == 0)
                     continue;
                 const VoxelBlock& block = blocks[b];
-                const BlockLayout layout(block.origin - grid->m_origin);
-                float* brick[8] = {};
-                for (int k = 0; k < 8; ++k) {
-                    if (touched[b] & (1 << k)) {
-                        const size_t slot =
-                            grid->brick_slot(layout.base + IVec3(k & 1, (k >> 1) & 1, k >> 2));
-                        brick[k] = &grid->m_voxels[static_cast<size_t>(index[slot]) *
-                                                   DensityGrid::kBrickVoxels];
+                // The block transposed to the bricks' order (x fastest), inactive and zero
+                // voxels as +0: each brick then takes runs of consecutive floats along x.
+                float t[VoxelBlock::kVoxels];
+                for (int x = 0; x < VoxelBlock::kEdge; ++x) {
+                    const uint64_t word = block.active[x];
+                    for (int yz = 0; yz < 64; ++yz) {
+                        const float v = block.values[(x << 6) | yz];
+                        t[x + 8 * ((yz >> 3) + 8 * (yz & 7))] =
+                            ((word >> yz) & 1) && v != 0.0f ? v : 0.0f;
                     }
                 }
-                for_each_active(block, [&](int n, float v) {
-                    if (v == 0.0f)
-                        return true;
-                    const int i[3] = {n >> 6, (n >> 3) & 7, n & 7};
-                    // Per axis: the primary brick, then (on a brick's first voxel) the apron copy.
-                    int o[3][2], p[3][2], copies[3];
-                    for (int a = 0; a < 3; ++a) {
-                        o[a][0] = layout.primary[a][i[a]];
-                        p[a][0] = layout.position[a][i[a]];
-                        copies[a] = layout.bricks[a][i[a]] == 3 ? 2 : 1;
-                        o[a][1] = 0;
-                        p[a][1] = kBrick;
-                    }
-                    for (int cz = 0; cz < copies[2]; ++cz)
-                        for (int cy = 0; cy < copies[1]; ++cy)
-                            for (int cx = 0; cx < copies[0]; ++cx) {
-                                float* dst = brick[o[0][cx] + 2 * o[1][cy] + 4 * o[2][cz]];
-                                dst[p[0][cx] + kStored * (p[1][cy] + kStored * p[2][cz])] = v;
-                            }
-                    return true;
-                });
+                const BlockBricks bricks(block.origin - grid->m_origin);
+                for (int k = 0; k < 8; ++k) {
+                    if (!(touched[b] & (1 << k)))
+                        continue;
+                    const size_t slot =
+                        grid->brick_slot(bricks.base + IVec3(k & 1, (k >> 1) & 1, k >> 2));
+                    float* dst = &grid->m_voxels[static_cast<size_t>(index[slot]) *
+                                                 DensityGrid::kBrickVoxels];
+                    const IVec3 lo = bricks.lo[k], hi = bricks.hi[k], sh = bricks.shift[k];
+                    const int run = hi.x - lo.x + 1;
+                    for (int z = lo.z; z <= hi.z; ++z)
+                        for (int y = lo.y; y <= hi.y; ++y) {
+                            const float* src = t + lo.x + 8 * (y + 8 * z);
+                            float* out =
+                                dst + (lo.x + sh.x) + kStored * ((y + sh.y) + kStored * (z + sh.z));
+                            for (int i = 0; i < run; ++i)
+                                out[i] = src[i];
+                        }
+                }
             }
         });
     grid->finalize();
