@@ -304,14 +304,16 @@ float MediumSet::phase_value(uint32_t k, float mu) const {
 }
 
 MixtureSample MediumSet::sample_scattering(const Vec3& p, uint32_t mask, const Vec3& wo,
-                                           float u_pick, Vec2 u) const {
+                                           float u_pick, Vec2 u,
+                                           const PointCoefficients* known) const {
     MixtureSample out;
     Rgb sigma_s[kMaxMedia];
     float weight[kMaxMedia];
     float total = 0.0f;
+    const bool one = mask != 0 && (mask & (mask - 1)) == 0;
     for (uint32_t m = mask; m != 0; m &= m - 1) {
         const int k = __builtin_ctz(m);
-        sigma_s[k] = sigma_s_at(m_media[k], p);
+        sigma_s[k] = one && known != nullptr ? known->sigma_s : sigma_s_at(m_media[k], p);
         weight[k] = std::max(luminance(sigma_s[k]), 0.0f);
         total += weight[k];
     }

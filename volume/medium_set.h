@@ -106,8 +106,10 @@ class MediumSet {
     float phase_value(uint32_t k, float mu) const;
     /// Picks a medium in proportion to the luminance of its sigma_s at p (with `u_pick`), samples
     /// its phase function with `u`, and returns the mixture's value and pdf for that direction.
+    /// `known`: the coefficients already looked up at p (coefficients(p, mask)); when `mask`
+    /// holds one medium its sigma_s is known->sigma_s (no second lookup).
     MixtureSample sample_scattering(const Vec3& p, uint32_t mask, const Vec3& wo, float u_pick,
-                                    Vec2 u) const;
+                                    Vec2 u, const PointCoefficients* known = nullptr) const;
 
     /// The hot-loop view of medium k: a grid (null for a homogeneous medium), its world-to-index
     /// transform and the coefficients per unit density (or the constant ones).

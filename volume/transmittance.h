@@ -32,6 +32,8 @@ struct FreeFlight {
     float t = 0.0f;
     Vec3 position{0.0f};
     uint32_t media_mask = 0;
+    /// The coefficients at `position` (the lookup that chose the scattering event).
+    PointCoefficients k;
     /// Factor to multiply into the path throughput. Expectations: over scattering outcomes,
     /// weight * F(t) estimates the integral of T(t) F(t) dt for any F that vanishes where
     /// sigma_s does (F carries sigma_s, e.g. sigma_s p L); over escapes, weight estimates T.

@@ -13,7 +13,7 @@ namespace kasumi {
 Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t light_index,
                          const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                          const Vec3& wo, const VolumeSettings& settings, float step, Pcg32& rng,
-                         VolumeCounters& counters);
+                         VolumeCounters& counters, const PointCoefficients* known = nullptr);
 
 namespace {
 
@@ -44,11 +44,12 @@ float nee_survival(const MediumSet& media, uint32_t mask, float mu) {
 /// The next path vertex after a scattering event at `position`: a direction from the media's
 /// phase mixture (throughput times f / pdf), Russian roulette from kRouletteDepth events on, and
 /// the continued ray (ended at the environment's surface). False: the path ends.
-bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask, const Vec3& wo,
-                    int depth, const PathEnvironment* environment, Pcg32& rng, Rgb& throughput,
-                    Ray& ray) {
+bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask,
+                    const PointCoefficients& k, const Vec3& wo, int depth,
+                    const PathEnvironment* environment, Pcg32& rng, Rgb& throughput, Ray& ray) {
     const float u_pick = rng.next_float();
-    const MixtureSample next = media.sample_scattering(position, mask, wo, u_pick, rng.next_vec2());
+    const Vec2 u = rng.next_vec2();
+    const MixtureSample next = media.sample_scattering(position, mask, wo, u_pick, u, &k);
     if (!(next.pdf > 0.0f))
         return false;
     throughput *= next.scattering / next.pdf;
@@ -345,11 +346,12 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
         ++counters.scattering_events;
         const Vec3 wo = -ray.direction;
         radiance += throughput * scattered_direct(media, lights, occlusion, flight.position,
-                                                  flight.media_mask, wo, settings, rng, counters);
+                                                  flight.media_mask, wo, settings, rng, counters,
+                                                  &flight.k);
         if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth)
             break;
-        if (!scatter_onward(media, flight.position, flight.media_mask, wo, depth, environment, rng,
-                            throughput, ray))
+        if (!scatter_onward(media, flight.position, flight.media_mask, flight.k, wo, depth,
+                            environment, rng, throughput, ray))
             break;
     }
     return radiance;
@@ -401,7 +403,7 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
                     ++counters.scattering_events;
                     radiance += (throughput * p.weight / (k * share)) *
                                 scattered_direct(media, lights, occlusion, p.position, p.media_mask,
-                                                 wo, settings, rng, counters);
+                                                 wo, settings, rng, counters, &p.k);
                 }
             }
         }
@@ -417,11 +419,13 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         // escape is composited by the caller, T * L_surface), as path_radiance does.
         Vec3 position;
         uint32_t mask = 0;
+        PointCoefficients k_here;
         Rgb flight_weight = walk.flight_weight;
         bool scattered = walk.scatter >= 0;
         if (scattered) {
             position = points[static_cast<size_t>(walk.scatter)].position;
             mask = points[static_cast<size_t>(walk.scatter)].media_mask;
+            k_here = points[static_cast<size_t>(walk.scatter)].k;
         } else if (walk.flight_open) {
             Ray rest = ray;
             rest.t_min = walk.stopped_at;
@@ -431,6 +435,7 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
             scattered = flight.scattered;
             position = flight.position;
             mask = flight.media_mask;
+            k_here = flight.k;
         }
         if (!scattered) {
             if (depth > 0 && environment != nullptr && !is_black(throughput * flight_weight))
@@ -439,7 +444,8 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         }
         ++depth;
         throughput *= flight_weight;
-        if (!scatter_onward(media, position, mask, wo, depth, environment, rng, throughput, ray))
+        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, rng, throughput,
+                            ray))
             break;
     }
     return radiance;
@@ -450,14 +456,21 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
 Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t light_index,
                          const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                          const Vec3& wo, const VolumeSettings& settings, float step, Pcg32& rng,
-                         VolumeCounters& counters) {
+                         VolumeCounters& counters, const PointCoefficients* known) {
     // One sample per light: exact for delta lights, unbiased for extended ones (irradiance at
     // normal incidence over the pdf; no cosine inside a medium).
     const IncidentLight in = sample_incident(light, x, rng);
     if (is_black(in.irradiance))
         return Rgb(0.0f);
-    const Rgb f = media.scattering(x, media_mask, scattering_cosine(wo, in.wi));
-    ++counters.density_lookups;
+    const bool one = media_mask != 0 && (media_mask & (media_mask - 1)) == 0;
+    const float mu = scattering_cosine(wo, in.wi);
+    Rgb f;
+    if (known != nullptr && one) {
+        f = media.scattering(*known, x, media_mask, mu);  // no lookup
+    } else {
+        f = media.scattering(x, media_mask, mu);
+        ++counters.density_lookups;
+    }
     std::optional<Rgb> cached;
     if (settings.light_cache && !is_black(f)) {
         if (const LightTransmittanceCache* cache = media.light_cache(light_index, light))
@@ -465,7 +478,7 @@ Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t ligh
     }
     if (settings.nee_roulette && !cached && !is_black(f)) {
         // A cached transmittance costs no walk: no roulette then.
-        const float q = nee_survival(media, media_mask, scattering_cosine(wo, in.wi));
+        const float q = nee_survival(media, media_mask, mu);
         if (q < 1.0f) {
             if (!(rng.next_float() < q))
                 return Rgb(0.0f);
@@ -480,12 +493,12 @@ Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t ligh
 Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
                      const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                      const Vec3& wo, const VolumeSettings& settings, Pcg32& rng,
-                     VolumeCounters& counters) {
+                     VolumeCounters& counters, const PointCoefficients* known) {
     const float step = march_step_m(media, settings);
     Rgb total(0.0f);
     for (size_t light_index = 0; light_index < lights.size(); ++light_index)
         total += scattered_direct_one(media, lights[light_index], light_index, occlusion, x,
-                                      media_mask, wo, settings, step, rng, counters);
+                                      media_mask, wo, settings, step, rng, counters, known);
     return total;
 }
 

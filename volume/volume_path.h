@@ -27,11 +27,13 @@ class PathEnvironment {
 /// Light from every light scattered toward wo at x per unit length (1/m · cd/m²):
 /// sum_l sum_m sigma_s,m(x) p_m(mu_l) E_l T_l V_l, one sample_incident per light (extended
 /// lights are sampled), the transmittance T_l by `settings.estimator`, the visibility V_l by
-/// `occlusion` (null: no surfaces; lights with shadows "none" are never blocked).
+/// `occlusion` (null: no surfaces; lights with shadows "none" are never blocked). `known`: the
+/// coefficients already looked up at x (a tracker's collision), so a single medium's sigma_s is
+/// not looked up again.
 Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
                      const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                      const Vec3& wo, const VolumeSettings& settings, Pcg32& rng,
-                     VolumeCounters& counters);
+                     VolumeCounters& counters, const PointCoefficients* known = nullptr);
 
 /// The volume stage over the camera segment [ray.t_min, ray.t_max) (t_max: the first surface):
 /// - `march` + `single` with only homogeneous media: integrate_volume (exact per stretch);
