@@ -93,6 +93,10 @@ KASUMI_CONFIGS = {
     "multiple": [
         ("residual-ratio", {"estimator": "residual-ratio"}),
         ("residual-ratio + light cache", {"estimator": "residual-ratio", "light_cache": True}),
+        # Russian roulette on next-event estimation (docs/volumes.md; unbiased): the WDAS
+        # cloud is lit from behind the camera, so most events backscatter (HG 0.8) and skip
+        # their shadow walk.
+        ("residual-ratio + NEE roulette", {"estimator": "residual-ratio", "nee_roulette": True}),
     ],
 }
 

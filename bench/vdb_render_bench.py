@@ -77,6 +77,10 @@ CONFIGS = [
     ("march 7 voxels + light cache",
      {"integrator": "single", "estimator": "march", "step_voxels": 7.0, "light_cache": True},
      False),
+    # Ratio tracking for in-scattering with next-event estimation at 4 collisions per walk
+    # (render.volume.nee_points, docs/volumes.md): the README's 1.74x row (--configs 7).
+    ("residual-ratio, 4 next-event points",
+     {"integrator": "single", "estimator": "residual-ratio", "nee_points": 4}, True),
 ]
 
 
