@@ -119,6 +119,28 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
         const Occluder& o = m_occluders[k];
         if (k == receiver && o.kind != Kind::Mesh)
             continue;
+        // A face plane with p outside it that every direction of the cone leaves away from
+        // (the smallest component of the cone's directions along its normal m is
+        // (m·a) cos σ − √(1 − (m·a)²) sin σ) separates the cone from a box or a quad.
+        const auto leaves = [&](double m_axis) {
+            return m_axis * cos_sigma -
+                       std::sqrt(std::max(0.0, 1.0 - m_axis * m_axis)) * sin_sigma >=
+                   0.0;
+        };
+        if (o.kind == Kind::Box) {
+            bool separated = false;
+            for (int i = 0; i < 3 && !separated; ++i)
+                separated =
+                    (p[i] > o.hi[i] && leaves(axis[i])) || (p[i] < o.lo[i] && leaves(-axis[i]));
+            if (separated)
+                continue;
+        } else if (o.kind == Kind::Quad) {
+            const DVec3 m =
+                glm::normalize(glm::cross(o.quad[1] - o.quad[0], o.quad[2] - o.quad[0]));
+            const double h = glm::dot(m, p - o.quad[0]);
+            if ((h > 0.0 && leaves(glm::dot(m, axis))) || (h < 0.0 && leaves(-glm::dot(m, axis))))
+                continue;
+        }
         const DVec3 to_center = o.center - p;
         const double dist = glm::length(to_center);
         if (dist > o.radius) {

@@ -53,6 +53,44 @@ TEST(EmitterHitTest, NearestOfSeveralAndSphereDistance) {
     EXPECT_EQ(inside->light, 0u);
 }
 
+TEST(EmitterHitTest, SphereGrazedFromFarAwayIsStillHit) {
+    // The float pre-test must not reject rays that pass just inside the rim, from near and
+    // from 1 km away: every ray whose line (the float ray, in double) passes inside the sphere
+    // is hit, at the closed-form t = f·d − √(R² − |f − (f·d) d|²).
+    const DVec3 c(2.5, 5.0, -1.0);
+    const double radius = 0.4;
+    const std::vector<Light> lights{ball(Vec3(c), static_cast<float>(radius), 1.0f)};
+    int hits = 0;
+    for (const double distance : {1.5, 8.0, 1000.0}) {
+        for (const double inside : {1e-6, 1e-3, 0.1}) {
+            for (int k = 0; k < 16; ++k) {
+                const double phi = 2.0 * kPiD * k / 16.0;
+                const DVec3 to_center = glm::normalize(DVec3(std::cos(phi), 0.3, std::sin(phi)));
+                const DVec3 side = glm::normalize(glm::cross(to_center, DVec3(0, 1, 0)));
+                // The line passes (1 − inside) R from the centre.
+                const double sin_t = (1.0 - inside) * radius / distance;
+                const DVec3 dir = std::sqrt(1.0 - sin_t * sin_t) * to_center + sin_t * side;
+                const Ray ray{Vec3(c - distance * to_center), Vec3(dir), 0.0f, kInfinity};
+                const DVec3 f = c - DVec3(ray.origin);
+                const DVec3 d = glm::normalize(DVec3(ray.direction));
+                const double b = glm::dot(f, d);
+                const double perp2 = glm::dot(f - b * d, f - b * d);
+                if (!(perp2 < radius * radius * (1.0 - 1e-9)))
+                    continue;  // rounding to float moved this line off the sphere
+                const auto hit = intersect_emitters(lights, ray);
+                ASSERT_TRUE(hit.has_value()) << distance << " " << inside << " " << k;
+                ++hits;
+                const double root = std::sqrt(radius * radius - perp2);
+                // The float direction is unit to ~1e-7; near the rim t moves by that times
+                // distance² / root (the root's conditioning).
+                EXPECT_NEAR(hit->t, b - root, 1e-6 * distance * (1.0 + distance / root))
+                    << distance << " " << inside << " " << k;
+            }
+        }
+    }
+    EXPECT_GE(hits, 120);  // of 144: the near and middle distances all count
+}
+
 TEST(EmitterHitTest, PointLikeAndLineLightsAreInvisible) {
     Light point;
     point.emitter = PointLight{Vec3(0, 1, 0), Rgb(100.0f)};
