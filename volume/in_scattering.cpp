@@ -297,26 +297,31 @@ VolumeResult integrate_volume(const MediumSet& media, const std::vector<Light>& 
             // n_steps is 0 when nothing is left to see through.
             const float dt = march_length / static_cast<float>(std::max(n_steps, 1));
             // Distances within a step are drawn from exp(-sigma_bar s) truncated to [0, dt].
-            const float sigma_bar =
-                (interval.sigma_t.r + interval.sigma_t.g + interval.sigma_t.b) / 3.0f;
-            const float mass = sigma_bar > 0.0f ? -std::expm1(-sigma_bar * dt) : 0.0f;
-            float s, pdf;
-            if (sigma_bar * dt > 1e-6f) {
-                s = -std::log1p(-u * mass) / sigma_bar;
-                pdf = sigma_bar * std::exp(-sigma_bar * s) / mass;
-            } else {
-                s = u * dt;
-                pdf = 1.0f / dt;
-            }
-            Rgb t_step_start = transmittance;
-            const Rgb t_within = exp_neg(interval.sigma_t * s);
-            for (int i = 0; i < n_steps && !marched.empty(); ++i) {
-                const float t = interval.t0 + static_cast<float>(i) * dt + s;
-                const Rgb src = source(media, interval, marched, occlusion, ray.at(t), wo,
-                                       settings.light_sampling, rng.next_float(), rng, counters);
-                ++counters.steps;
-                result.radiance += t_step_start * t_within * src / pdf;
-                t_step_start *= exp_neg(interval.sigma_t * dt);
+            // Only the marched (non-point) lights use them.
+            if (!marched.empty() && n_steps > 0) {
+                const float sigma_bar =
+                    (interval.sigma_t.r + interval.sigma_t.g + interval.sigma_t.b) / 3.0f;
+                const float mass = sigma_bar > 0.0f ? -std::expm1(-sigma_bar * dt) : 0.0f;
+                float s, pdf;
+                if (sigma_bar * dt > 1e-6f) {
+                    s = -std::log1p(-u * mass) / sigma_bar;
+                    pdf = sigma_bar * std::exp(-sigma_bar * s) / mass;
+                } else {
+                    s = u * dt;
+                    pdf = 1.0f / dt;
+                }
+                Rgb t_step_start = transmittance;
+                const Rgb t_within = exp_neg(interval.sigma_t * s);
+                const Rgb t_step = exp_neg(interval.sigma_t * dt);
+                for (int i = 0; i < n_steps; ++i) {
+                    const float t = interval.t0 + static_cast<float>(i) * dt + s;
+                    const Rgb src =
+                        source(media, interval, marched, occlusion, ray.at(t), wo,
+                               settings.light_sampling, rng.next_float(), rng, counters);
+                    ++counters.steps;
+                    result.radiance += t_step_start * t_within * src / pdf;
+                    t_step_start *= t_step;
+                }
             }
             if (!point_lights.empty() && n_steps > 0) {
                 result.radiance += point_light_scattering(
