@@ -3,8 +3,8 @@
 // weighted 1/q. Checked against exact answers with q < 1 (q = 0.54 and the floor 0.1): a
 // homogeneous box lit by a sun (closed form), a heterogeneous grid against a fine march, and
 // multiple scattering in a grid against the same paths without the roulette. Statistical
-// assertions at 4 standard errors (two-sided Gaussian false-failure rate 6e-5 each, 13
-// assertions of that kind: about 8e-4 for the file; fixed seeds, so a pass is reproducible).
+// assertions at 4 standard errors (two-sided Gaussian false-failure rate 6e-5 each, 10
+// assertions of that kind: about 6e-4 for the file; fixed seeds, so a pass is reproducible).
 #include "tests/sample_mean.h"
 #include "vdb_test_grids.h"
 #include "volume/volume_path.h"
