@@ -61,8 +61,8 @@ struct Light {
     /// whether a point is entirely lit or in umbra (then no samples are traced); biased, with a
     /// stated bound (lights/light_samples.h, OutlineProbes). 0: off.
     int outline_probes = 0;
-    /// Sphere lights: where the closed form applies, the visible part of the light is computed
-    /// exactly against the scene's spheres, boxes and quads instead of sampled
+    /// Sphere and polygon lights: where the closed form applies, the visible part of the light is
+    /// computed exactly against the scene's spheres, boxes and quads instead of sampled
     /// (surface/sphere_light_occluders.h); elsewhere the samples (and probes) as usual.
     bool exact_penumbra = false;
     ShadowMapSettings shadow_map{};  ///< used when shadows == ShadowMode::Map

@@ -211,8 +211,9 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
         light.outline_probes = static_cast<int>(probes);
     }
     if (const auto e = reader.optional("exact_penumbra")) {
-        if (!std::holds_alternative<SphereLight>(light.emitter))
-            e->fail("exact_penumbra applies to sphere lights; this is a " +
+        if (!std::holds_alternative<SphereLight>(light.emitter) &&
+            !std::holds_alternative<PolygonLight>(light.emitter))
+            e->fail("exact_penumbra applies to sphere and polygon lights; this is a " +
                     light_type_name(light) + " light");
         if (light.shadows != ShadowMode::Ray)
             e->fail("exact_penumbra applies to ray-traced shadows (\"shadows\": \"ray\")");

@@ -210,15 +210,23 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
             // of the light, E = L Ω_n, and a Lambertian surface without media reflects kd/π E
             // (clipped at the horizon of ns, which is the geometric one when they are equal).
             // Where the closed form does not apply, the samples below.
-            const auto& sphere = std::get<SphereLight>(light.emitter);
-            if (ng == ns || SphereLightCone(sphere, hit.position).above_plane(ng)) {
-                if (const auto omega =
-                        scene.surfaces()->sphere_light_occluders().visible_projected_solid_angle(
-                            sphere, hit.position, ns, hit.shape)) {
-                    radiance +=
-                        material.kd * kInvPi * sphere.luminance * static_cast<float>(*omega);
-                    continue;
-                }
+            const SphereLightOccluders& occluders = scene.surfaces()->sphere_light_occluders();
+            std::optional<double> omega;
+            Rgb light_luminance(0.0f);
+            if (const auto* sphere = std::get_if<SphereLight>(&light.emitter)) {
+                light_luminance = sphere->luminance;
+                if (ng == ns || SphereLightCone(*sphere, hit.position).above_plane(ng))
+                    omega = occluders.visible_projected_solid_angle(*sphere, hit.position, ns,
+                                                                    hit.shape);
+            } else if (const auto* polygon = std::get_if<PolygonLight>(&light.emitter)) {
+                light_luminance = polygon->luminance;
+                if (ng == ns)
+                    omega = occluders.visible_projected_solid_angle(*polygon, hit.position, ns,
+                                                                    hit.shape);
+            }
+            if (omega) {
+                radiance += material.kd * kInvPi * light_luminance * static_cast<float>(*omega);
+                continue;
             }
         }
         const PointLightSampler sampler(light, hit.position);

@@ -1,6 +1,7 @@
 #include "surface/sphere_light_occluders.h"
 
 #include "lights/cap_region.h"
+#include "lights/polygon_light.h"
 
 #include <algorithm>
 #include <cmath>
@@ -109,11 +110,72 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
     const double nearest = d - radius;
     const double farthest = std::sqrt((d - radius) * (d + radius));
 
+    return visible_part(base, base_count, unshadowed, p, n, axis, cos_sigma, sin_sigma, nearest,
+                        farthest, nullptr, 0.0, receiver);
+}
+
+std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const PolygonLight& light,
+                                                                          const Vec3& p_in,
+                                                                          const Vec3& n_in,
+                                                                          uint32_t receiver) const {
+    const DVec3 p(p_in), n(n_in);
+    const size_t count = light.vertices.size();
+    if (count < 3 || count > kMaxPolygonVertices)
+        return std::nullopt;
+    const DVec3 normal(light.normal);
+    const DVec3 v0(light.vertices[0]);
+    const double height = glm::dot(normal, p - v0);  // > 0 in front
+    if (height == 0.0 || (height < 0.0 && !light.two_sided))
+        return 0.0;  // in the light's plane, or behind a one-sided light
+    // The polygon seen from p: the intersection of the hemispheres bounded by the great circles
+    // through p and its edges, each oriented toward the vertex centroid (inside the convex
+    // polygon, off every edge plane since p is off the polygon's plane).
+    DVec3 centroid(0.0);
+    for (const Vec3& v : light.vertices)
+        centroid += DVec3(v);
+    centroid /= static_cast<double>(count);
+    SphericalCap base[kMaxPolygonVertices + 1];
+    size_t base_count = 0;
+    double farthest = 0.0, bound_radius = 0.0;
+    bool below = false;
+    for (size_t i = 0; i < count; ++i) {
+        const DVec3 u(light.vertices[i]), v(light.vertices[(i + 1) % count]);
+        if (!edge_hemisphere(p, u, v, centroid, base[base_count++]))
+            return std::nullopt;
+        farthest = std::max(farthest, glm::length(u - p));
+        bound_radius = std::max(bound_radius, glm::length(u - centroid));
+        below = below || glm::dot(n, u - p) < 0.0;
+    }
+    // Clipped to the hemisphere above n when a vertex lies below it.
+    if (below)
+        base[base_count++] = SphericalCap{n, 0.0, 1.0};
+    const double unshadowed = cap_intersection_projected_solid_angle(base, base_count, n);
+    if (!std::isfinite(unshadowed))
+        return std::nullopt;
+    if (!(unshadowed > 0.0))
+        return 0.0;
+    // A cone around the polygon for culling: the bounding sphere's (centroid, bound_radius).
+    const DVec3 to_centroid = centroid - p;
+    const double dc = glm::length(to_centroid);
+    const DVec3 axis = to_centroid / dc;
+    const double sin_sigma = dc > bound_radius ? bound_radius / dc : 1.0;
+    const double cos_sigma = std::sqrt(std::max(0.0, 1.0 - sin_sigma * sin_sigma));
+    // Occluders are classified by the side of the light's plane they lie on (p's side: in
+    // front).
+    const DVec3 side = height > 0.0 ? normal : -normal;
+    return visible_part(base, base_count, unshadowed, p, n, axis, cos_sigma, sin_sigma,
+                        std::abs(height), farthest, &side, glm::dot(side, v0), receiver);
+}
+
+std::optional<double> SphereLightOccluders::visible_part(
+    const SphericalCap* base, size_t base_count, double unshadowed, const DVec3& p, const DVec3& n,
+    const DVec3& axis, double cos_sigma, double sin_sigma, double nearest, double farthest,
+    const DVec3* plane, double plane_offset, uint32_t receiver) const {
     // One spare slot: an occluder's caps are built there before it is known to overlap.
     SphericalCap occluder_caps[kMaxOccluders + 1][kMaxCapsPerOccluder];
     int cap_count[kMaxOccluders + 1] = {};
     double single[kMaxOccluders] = {};  ///< measure of (base ∩ occluder k)
-    SphericalCap caps[2 + kMaxOccluders * kMaxCapsPerOccluder];
+    SphericalCap caps[kMaxPolygonVertices + 1 + kMaxOccluders * kMaxCapsPerOccluder];
     int occluders = 0;
     for (size_t k = 0; k < m_occluders.size(); ++k) {
         const Occluder& o = m_occluders[k];
@@ -152,14 +214,39 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
             const double cos_apart = glm::dot(axis, to_center) / dist;
             if (cos_apart <= cos_sigma * cos_beta - sin_sigma * sin_beta)
                 continue;
-            if (dist - o.radius >= farthest)
+            if (plane == nullptr && dist - o.radius >= farthest)
                 continue;  // wholly beyond the visible side of the light
         }
         if (o.kind == Kind::Mesh)
             return std::nullopt;
+        // In front of the light: nearer than it along every direction of the region. Sphere
+        // lights: the occluder's farthest point from p within d − R; polygon lights: the whole
+        // occluder on p's side of the light's plane (a ray from p meets the plane once, at the
+        // light). Behind: beyond √(d² − R²), or wholly on the far side of the plane.
+        bool in_front = false;
+        if (plane != nullptr) {
+            const double s = glm::dot(*plane, o.center) - plane_offset;
+            double extent = o.radius;
+            if (o.kind == Kind::Box)
+                extent = glm::dot(glm::abs(*plane), 0.5 * (o.hi - o.lo));
+            double s_lo = s - extent, s_hi = s + extent;
+            if (o.kind == Kind::Quad) {
+                s_lo = std::numeric_limits<double>::infinity();
+                s_hi = -s_lo;
+                for (const DVec3& v : o.quad) {
+                    s_lo = std::min(s_lo, glm::dot(*plane, v) - plane_offset);
+                    s_hi = std::max(s_hi, glm::dot(*plane, v) - plane_offset);
+                }
+            }
+            if (s_hi <= 0.0)
+                continue;
+            in_front = s_lo > 0.0;
+        }
         // The occluder's nearest and farthest points from p (bounds for quads).
         double s_min = dist - o.radius, s_max = dist + o.radius;
-        if (o.kind == Kind::Box) {
+        if (plane != nullptr) {
+            s_min = -std::numeric_limits<double>::infinity();
+        } else if (o.kind == Kind::Box) {
             const DVec3 nearest_point = glm::clamp(p, o.lo, o.hi);
             s_min = glm::length(nearest_point - p);
             const DVec3 far_corner(p.x < o.center.x ? o.hi.x : o.lo.x,
@@ -230,7 +317,9 @@ std::optional<double> SphereLightOccluders::visible_projected_solid_angle(const 
             return std::nullopt;
         if (!(covered > 0.0))
             continue;
-        if (s_max > nearest || occluders == kMaxOccluders)
+        if (plane == nullptr)
+            in_front = s_max <= nearest;
+        if (!in_front || occluders == kMaxOccluders)
             return std::nullopt;
         single[occluders++] = covered;
     }

@@ -3,6 +3,8 @@
 /// projected solid angle of the part of a sphere light a point sees past the scene's spheres,
 /// boxes and quads, in closed form, or nothing when the configuration is outside what the
 /// closed form covers (the caller then samples the light as usual).
+#include "lights/cap_region.h"
+#include "lights/polygon_light.h"
 #include "lights/sphere_light.h"
 #include "surface/shape.h"
 
@@ -40,7 +42,25 @@ class SphereLightOccluders {
     std::optional<double> visible_projected_solid_angle(const SphereLight& light, const Vec3& p,
                                                         const Vec3& n, uint32_t receiver) const;
 
+    /// The same for a convex polygon light (its solid angle from p is the intersection of the
+    /// hemispheres through p and its edges): ∫ max(0, n · ω) dω over the directions toward the
+    /// polygon that reach it; 0 behind a one-sided light. An occluder wholly on p's side of it
+    /// hides what it covers, one wholly on the far side nothing, one across it sends the point to
+    /// the samples. Same fallbacks.
+    std::optional<double> visible_projected_solid_angle(const PolygonLight& light, const Vec3& p,
+                                                        const Vec3& n, uint32_t receiver) const;
+
   private:
+    /// base: the light's region (with the hemisphere above n when clipped), its measure
+    /// `unshadowed`; (axis, σ) a cone around it for culling; every direction of the region
+    /// meets the light between `nearest` and `farthest` (sphere lights), or, given `plane` (unit
+    /// m, m · x − plane_offset > 0 on p's side), the light lies in that plane (polygon lights).
+    std::optional<double> visible_part(const SphericalCap* base, size_t base_count,
+                                       double unshadowed, const DVec3& p, const DVec3& n,
+                                       const DVec3& axis, double cos_sigma, double sin_sigma,
+                                       double nearest, double farthest, const DVec3* plane,
+                                       double plane_offset, uint32_t receiver) const;
+
     enum class Kind : uint8_t { Sphere, Box, Quad, Mesh };
     struct Occluder {
         Kind kind = Kind::Mesh;

@@ -7,6 +7,7 @@
 #include "core/json_node.h"
 #include "lights/cap_region.h"
 #include "lights/light_json.h"
+#include "lights/polygon_light.h"
 #include "lights/sphere_light.h"
 #include "surface/sphere_light_occluders.h"
 #include "surface/surface_scene.h"
@@ -163,6 +164,72 @@ TEST(ExactPenumbra, MatchesQuadratureOfTheVisibleConeAcrossPenumbrae) {
     }
 }
 
+/// E / L = ∫ max(0, n·ω) V dω over a polygon light by the midpoint rule over its area (fan
+/// triangles mapped from the unit square, x = v0 + u (v1 − v0) + u v (v2 − v1), Jacobian
+/// 2 A u), dω = |cos θ'| dA / r², V from a shadow ray to each cell.
+double polygon_quadrature(const SurfaceScene& scene, const PolygonLight& light, const Vec3& p,
+                          const Vec3& n, int cells) {
+    double sum = 0.0;
+    const DVec3 q(p), nd(n), ln(light.normal);
+    for (size_t t = 1; t + 1 < light.vertices.size(); ++t) {
+        const DVec3 v0(light.vertices[0]), v1(light.vertices[t]), v2(light.vertices[t + 1]);
+        const double area2 = glm::length(glm::cross(v1 - v0, v2 - v0));
+        for (int i = 0; i < cells; ++i) {
+            const double u = (i + 0.5) / cells;
+            for (int j = 0; j < cells; ++j) {
+                const double v = (j + 0.5) / cells;
+                const DVec3 x = v0 + u * (v1 - v0) + u * v * (v2 - v1);
+                const DVec3 to = x - q;
+                const double r2 = glm::dot(to, to);
+                const DVec3 w = to / std::sqrt(r2);
+                const double cos_r = glm::dot(nd, w);
+                if (cos_r <= 0.0)
+                    continue;
+                if (scene.occluded(
+                        Ray{p, Vec3(w), 0.0f, static_cast<float>(std::sqrt(r2)) * (1.0f - 1e-5f)}))
+                    continue;
+                sum += cos_r * std::abs(glm::dot(ln, w)) / r2 * area2 * u;
+            }
+        }
+    }
+    return sum / (static_cast<double>(cells) * cells);
+}
+
+TEST(ExactPenumbra, PolygonLightMatchesQuadratureOfItsArea) {
+    // A 1 m × 0.6 m panel facing down at 3 m (counter-clockwise seen from below), over the
+    // benchmark's ball and block and a tilted plate; receivers on the floor, tilted, and one
+    // whose horizon cuts the panel.
+    const PolygonLight panel =
+        make_polygon_light({Vec3(-0.5f, 3.0f, -0.3f), Vec3(0.5f, 3.0f, -0.3f),
+                            Vec3(0.5f, 3.0f, 0.3f), Vec3(-0.5f, 3.0f, 0.3f)},
+                           Rgb(1.0f), false);
+    ASSERT_LT(panel.normal.y, -0.99f);
+    const SurfaceScene scene({sphere(Vec3(0.3f, 1.6f, 0.0f), 0.4f),
+                              box(Vec3(-1.6f, 0.0f, -0.6f), Vec3(-1.0f, 1.2f, 0.2f)),
+                              quad(Vec3(0.6f, 2.0f, -0.4f), Vec3(1.2f, 2.2f, -0.4f),
+                                   Vec3(1.2f, 2.2f, 0.4f), Vec3(0.6f, 2.0f, 0.4f))});
+    const SphereLightOccluders& occluders = scene.sphere_light_occluders();
+    const Vec3 up(0, 1, 0);
+    const Vec3 tilted = glm::normalize(Vec3(-0.4f, 1.0f, 0.3f));
+    const Vec3 edge_on = glm::normalize(Vec3(1.0f, 0.25f, 0.0f));
+    int penumbra = 0;
+    for (const Vec3& n : {up, tilted, edge_on}) {
+        for (int k = 0; k <= 12; ++k) {
+            const Vec3 p(-2.5f + 0.4f * k, 0.0f, 0.45f);  // beside the block, not under it
+            const auto exact = occluders.visible_projected_solid_angle(panel, p, n, kNoReceiver);
+            ASSERT_TRUE(exact.has_value()) << k;
+            const double full = luminance(unshadowed_irradiance(panel, p, n));
+            const double reference = polygon_quadrature(scene, panel, p, n, 500);
+            EXPECT_NEAR(*exact, reference, 1.5e-3 * full + 1e-9)
+                << "p.x " << p.x << " n " << n.x << "," << n.y << " fraction " << *exact / full;
+            penumbra += (*exact > 0.05 * full && *exact < 0.95 * full) ? 1 : 0;
+        }
+    }
+    EXPECT_GE(penumbra, 8);  // the scan crosses penumbrae, not only full light and umbra
+    // Behind the one-sided panel: no light.
+    EXPECT_EQ(*occluders.visible_projected_solid_angle(panel, Vec3(0, 4, 0), up, kNoReceiver), 0.0);
+}
+
 TEST(ExactPenumbra, CoaxialBallLeavesTheRingInClosedForm) {
     // A ball on the axis from p to the light, subtending β < σ: the visible ring is
     // π (sin²σ − sin²β) cos θ exactly (both caps about the same axis, above the horizon).
@@ -277,9 +344,12 @@ TEST(ExactPenumbra, SceneKeyIsValidated) {
             EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
         }
     };
-    fails(R"({"type": "polygon", "vertices": [[0, 1, 0], [1, 1, 0], [1, 1, 1]],
-              "luminance_cd_m2": 1, "exact_penumbra": true})",
-          "exact_penumbra applies to sphere lights");
+    EXPECT_TRUE(parse(R"({"type": "polygon", "vertices": [[0, 1, 0], [1, 1, 0], [1, 1, 1]],
+                          "luminance_cd_m2": 1, "exact_penumbra": true})")
+                    .exact_penumbra);
+    fails(R"({"type": "point", "position": [0, 1, 0], "intensity_cd": 1,
+              "exact_penumbra": true})",
+          "exact_penumbra applies to sphere and polygon lights");
     fails(R"({"type": "sphere", "center": [0, 4, 0], "radius": 0.5, "luminance_cd_m2": 1,
               "shadows": "map", "exact_penumbra": true})",
           "exact_penumbra applies to ray-traced shadows");
