@@ -50,8 +50,8 @@ bool parse_film_aovs(const std::string& text, uint32_t& aovs) {
     return any;
 }
 
-std::vector<std::vector<float>>& Film::kept_storage() {
-    static std::vector<std::vector<float>> kept;
+std::vector<Film::Storage>& Film::kept_storage() {
+    static std::vector<Storage> kept;
     return kept;
 }
 
@@ -101,10 +101,10 @@ Film::Film(int width, int height, uint32_t aovs)
         }
     }
     if (m_planes.size() == size)
-        std::fill(m_planes.begin(), m_planes.end(), 0.0f);
+        std::fill(m_planes.begin(), m_planes.end(), 0.0f);  // recycled: written by the last film
     else
-        m_planes.assign(size, 0.0f);
-    if (m_first[4] >= 0)  // empty pixels: transmittance 1
+        m_planes.resize(size);  // new: zeros from calloc, no fill (ZeroedAllocator)
+    if (m_first[4] >= 0)        // empty pixels: transmittance 1
         std::fill(plane(m_first[4]), plane(m_first[4] + 3), 1.0f);
 }
 

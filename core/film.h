@@ -3,6 +3,7 @@
 /// Samples are box-filtered: each pixel is the mean of the samples taken inside it.
 #include "core/color.h"
 #include "core/image.h"
+#include "core/zeroed_allocator.h"
 
 #include <cstdint>
 #include <string>
@@ -82,8 +83,10 @@ class Film {
     std::vector<FilmPlane> planes(uint32_t aovs) const;
 
   private:
+    /// Plane storage: a new film's planes are fresh zeroed pages (calloc), not a fill pass.
+    using Storage = std::vector<float, ZeroedAllocator<float>>;
     /// Storage of destroyed films, kept for reuse (guarded by a mutex in film.cpp).
-    static std::vector<std::vector<float>>& kept_storage();
+    static std::vector<Storage>& kept_storage();
     /// Plane `channel` (0..3: R, G, B, A, then the stored AOVs' channels in order).
     float* plane(int channel) { return m_planes.data() + static_cast<size_t>(channel) * m_pixels; }
     const float* plane(int channel) const {
@@ -96,7 +99,7 @@ class Film {
     /// First plane of each AOV (index by bit position: albedo, depth, surface, volume,
     /// transmittance), -1 if not stored.
     int m_first[5];
-    std::vector<float> m_planes;  ///< channel-major: plane c holds pixel i at c * m_pixels + i
+    Storage m_planes;  ///< channel-major: plane c holds pixel i at c * m_pixels + i
 };
 
 }  // namespace kasumi

@@ -7,6 +7,7 @@
 /// Index space follows OpenVDB: voxel (i, j, k) holds its value at the index-space point
 /// (i, j, k); between voxel centres the density is trilinear. Voxels never set are 0.
 #include "core/math.h"
+#include "core/zeroed_allocator.h"
 
 #include <cstdint>
 #include <cstdlib>
@@ -17,40 +18,6 @@
 namespace kasumi {
 
 using IVec3 = glm::ivec3;
-
-/// An allocator whose memory starts zeroed (calloc: large blocks are fresh pages from the
-/// kernel, never written) and whose default-inserted elements are left as they are: resizing a
-/// new vector of floats to n gives n zeros without writing them. Explicit values (resize(n, v),
-/// assign, push_back) are written as usual.
-template <class T>
-struct ZeroedAllocator {
-    using value_type = T;
-    ZeroedAllocator() = default;
-    template <class U>
-    ZeroedAllocator(const ZeroedAllocator<U>&) noexcept {}
-    T* allocate(size_t n) {
-        if (void* p = std::calloc(n, sizeof(T)))
-            return static_cast<T*>(p);
-        throw std::bad_alloc();
-    }
-    void deallocate(T* p, size_t) noexcept { std::free(p); }
-    template <class U>
-    void construct(U* p) noexcept {
-        ::new (static_cast<void*>(p)) U;  // default-initialised: the zeros calloc gave
-    }
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
-    template <class U>
-    bool operator==(const ZeroedAllocator<U>&) const noexcept {
-        return true;
-    }
-    template <class U>
-    bool operator!=(const ZeroedAllocator<U>&) const noexcept {
-        return false;
-    }
-};
 
 /// One stretch [t0, t1] of a ray inside one non-empty brick, with bounds of the density there.
 struct BrickSpan {

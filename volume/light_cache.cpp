@@ -1,6 +1,7 @@
 #include "volume/light_cache.h"
 
 #include <cmath>
+#include <vector>
 
 namespace kasumi {
 
@@ -20,7 +21,7 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
            static_cast<float>(kMaxPoints))
         m_cell *= 2.0f;
     m_dims = IVec3(glm::ceil(extent / m_cell)) + IVec3(1);
-    m_d.assign(static_cast<size_t>(m_dims.x) * m_dims.y * m_dims.z, 0.0f);
+    m_d.resize(static_cast<size_t>(m_dims.x) * m_dims.y * m_dims.z);  // zeroed pages, no fill
 
     // One lattice step toward the light along the major axis a of the index-space direction.
     const Vec3 d_index(m_world_to_index * Vec4(toward_light, 0.0f));
@@ -35,42 +36,61 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
     const int first = toward > 0 ? m_dims[a] - 1 : 0;             // slice nearest the light
 
     auto at = [&](IVec3 p) -> float& { return m_d[index(p.x, p.y, p.z)]; };
-    // D on slice `slice` at fractional (u, v) along axes b, c; 0 outside the lattice (the ray
-    // has left the box, which it never re-enters).
-    auto bilinear = [&](int slice, float u, float v) {
-        const float fu = std::floor(u), fv = std::floor(v);
-        const int iu = static_cast<int>(fu), iv = static_cast<int>(fv);
-        const float tu = u - fu, tv = v - fv;
-        float sum = 0.0f;
-        for (int dv = 0; dv < 2; ++dv)
-            for (int du = 0; du < 2; ++du) {
-                const int pu = iu + du, pv = iv + dv;
-                if (pu < 0 || pv < 0 || pu >= m_dims[b] || pv >= m_dims[c])
-                    continue;
-                IVec3 p;
-                p[a] = slice;
-                p[b] = pu;
-                p[c] = pv;
-                sum += (du ? tu : 1.0f - tu) * (dv ? tv : 1.0f - tv) * at(p);
-            }
-        return sum;
+    // D at q is bilinear on the upstream slice at (p[b] + step[b] / cell, p[c] + step[c] /
+    // cell): the lower corner and the weights depend on p[b] alone along b and on p[c] alone
+    // along c, so they are computed once per column and per row (the same float operations as
+    // per point: the cache is bit-identical to the per-point form). A corner outside the
+    // lattice adds nothing (the ray has left the box, which it never re-enters).
+    struct Axis {
+        int i0;      ///< lower lattice index, may be -1 or the last index
+        float w[2];  ///< weights of i0 and i0 + 1
+        bool in[2];  ///< i0, i0 + 1 inside the lattice
     };
+    const auto axis_table = [&](int axis) {
+        std::vector<Axis> table(static_cast<size_t>(m_dims[axis]));
+        for (int i = 0; i < m_dims[axis]; ++i) {
+            const float u = static_cast<float>(i) + step[axis] / m_cell;
+            const float fu = std::floor(u);
+            const int iu = static_cast<int>(fu);
+            const float tu = u - fu;
+            Axis& e = table[static_cast<size_t>(i)];
+            e.i0 = iu;
+            e.w[0] = 1.0f - tu;
+            e.w[1] = tu;
+            e.in[0] = iu >= 0 && iu < m_dims[axis];
+            e.in[1] = iu + 1 >= 0 && iu + 1 < m_dims[axis];
+        }
+        return table;
+    };
+    const std::vector<Axis> along_b = axis_table(b), along_c = axis_table(c);
+    const size_t stride[3] = {1, static_cast<size_t>(m_dims.x),
+                              static_cast<size_t>(m_dims.x) * static_cast<size_t>(m_dims.y)};
     for (int slice = first; slice >= 0 && slice < m_dims[a]; slice -= toward) {
         const int upstream = slice + toward;
         const bool inside = upstream >= 0 && upstream < m_dims[a];
         IVec3 p;
         p[a] = slice;
         for (p[c] = 0; p[c] < m_dims[c]; ++p[c]) {
+            const Axis& ev = along_c[static_cast<size_t>(p[c])];
             for (p[b] = 0; p[b] < m_dims[b]; ++p[b]) {
                 const Vec3 x = m_lower + m_cell * Vec3(p);
                 const Vec3 q = x + step;
                 const float rho_p = grid.density(x);
                 const float rho_m = grid.density(x + 0.5f * step);
                 const float rho_q = grid.density(q);
-                const float upstream_d =
-                    inside ? bilinear(upstream, static_cast<float>(p[b]) + step[b] / m_cell,
-                                      static_cast<float>(p[c]) + step[c] / m_cell)
-                           : 0.0f;
+                float upstream_d = 0.0f;
+                if (inside) {
+                    const Axis& eu = along_b[static_cast<size_t>(p[b])];
+                    const float* row = m_d.data() + static_cast<size_t>(upstream) * stride[a];
+                    for (int dv = 0; dv < 2; ++dv)
+                        for (int du = 0; du < 2; ++du) {
+                            if (!eu.in[du] || !ev.in[dv])
+                                continue;
+                            upstream_d += eu.w[du] * ev.w[dv] *
+                                          row[static_cast<size_t>(eu.i0 + du) * stride[b] +
+                                              static_cast<size_t>(ev.i0 + dv) * stride[c]];
+                        }
+                }
                 at(p) = upstream_d + length_m * (rho_p + 4.0f * rho_m + rho_q) * (1.0f / 6.0f);
             }
         }

@@ -13,6 +13,7 @@
 /// sideways by about sqrt(n) · h after n slices (shadow edges soften by a fraction of a voxel per
 /// slice crossed) and the trilinear lookup between lattice points. Exact for media constant
 /// along the light direction. Surfaces are not in the cache (the occlusion query handles them).
+#include "core/zeroed_allocator.h"
 #include "volume/medium.h"
 
 #include <optional>
@@ -98,7 +99,7 @@ class LightTransmittanceCache {
     IVec3 m_dims{0};
     Rgb m_sigma_t_per_density{0.0f};
     bool m_grey = true;  ///< sigma_t equal in all channels: one exp per query
-    std::vector<float> m_d;
+    std::vector<float, ZeroedAllocator<float>> m_d;  ///< every point written by the build
 };
 
 }  // namespace kasumi
