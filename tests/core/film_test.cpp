@@ -2,9 +2,11 @@
 // the full image, a reused Image gets the new film's values with no stale data and no new
 // buffers, and a film whose storage is recycled from a destroyed one starts empty.
 #include "core/film.h"
+#include "core/zeroed_allocator.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -160,6 +162,37 @@ TEST(Film, ParsesAovLists) {
     EXPECT_EQ(aovs, static_cast<uint32_t>(kAovSurface | kAovVolume | kAovTransmittance));
     EXPECT_FALSE(parse_film_aovs("depth,normals", aovs));
     EXPECT_FALSE(parse_film_aovs("", aovs));
+}
+
+TEST(Film, NewFilmsOnFreshHugePageStorageStartEmpty) {
+    // 1024x1024 with every AOV is 68 MB: fresh storage mapped in 2 MiB pages, never filled.
+    // A first film is written and destroyed, a film of another size then gets new storage.
+    { const Film used = make_film(1024, 1024, 5.0f); }
+    const Film film(1000, 1000);
+    expect_empty(film.to_image());
+}
+
+TEST(ZeroedAllocator, LargeBlocksAreZeroAlignedAndKeepTheirValuesWhenGrown) {
+    using Floats = std::vector<float, ZeroedAllocator<float>>;
+    constexpr size_t kHuge = ZeroedAllocator<float>::kHugePage;
+    for (const size_t n : {size_t{1000}, kHuge / sizeof(float), 3 * kHuge / sizeof(float) + 7}) {
+        Floats v;
+        v.resize(n);  // zeros without a fill
+        size_t nonzero = 0;
+        for (const float x : v)
+            nonzero += x != 0.0f;
+        EXPECT_EQ(nonzero, 0u) << n;
+        if (n >= kHuge / sizeof(float)) {  // mapped: on a huge-page boundary
+            EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % kHuge, 0u) << n;
+        }
+        for (size_t i = 0; i < n; i += 4093)
+            v[i] = static_cast<float>(i);
+        v.resize(2 * n + 1);  // reallocates: old values copied, the new tail zero
+        size_t wrong = 0;
+        for (size_t i = 0; i < v.size(); ++i)
+            wrong += v[i] != (i < n && i % 4093 == 0 ? static_cast<float>(i) : 0.0f);
+        EXPECT_EQ(wrong, 0u) << n;
+    }
 }
 
 }  // namespace
