@@ -1,5 +1,6 @@
 #include "volume/vdb_direct.h"
 
+#include "core/error.h"
 #include "volume/density_grid_build.h"
 
 #include <tbb/blocked_range.h>
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -42,6 +44,14 @@ constexpr uint32_t kCompressZip = 0x1;
 constexpr uint32_t kCompressActiveMask = 0x2;
 constexpr uint32_t kCompressBlosc = 0x4;
 constexpr int8_t kNoMaskAndAllValues = 6;  // the only mask-compression code storing every value
+
+// What a grid may cover. Both readers store every active voxel of a tile and a brick index over
+// the active box, so a few bytes of a hostile file (one mask bit is a tile of 128³ voxels, two
+// leaves far apart span 2^32 voxels per axis) would ask either for terabytes: such grids are
+// input errors here rather than a decline (OpenVDB's path would allocate until it fails).
+constexpr uint64_t kMaxTileVoxels = uint64_t(1) << 27;  // 512³ voxels of tiles: 0.8 GB of bricks
+constexpr int64_t kMaxEdgeVoxels = int64_t(1) << 24;    // per axis of the active box
+constexpr uint64_t kMaxBrickSlots = uint64_t(1) << 24;  // bricks of 8³ cells in the box: 0.2 GB
 
 /// The file, mapped read-only.
 class MappedFile {
@@ -101,6 +111,26 @@ class Cursor {
         std::memcpy(&v, take(sizeof(T)), sizeof(T));
         return v;
     }
+    /// Once the grid's layout is known: the "context: path grid" that input errors start with.
+    void set_where(const std::string* where) { m_where = where; }
+    /// The bytes of a blosc, zip or raw chunk of `n` bytes, where `expected_raw` are expected
+    /// when stored raw (n <= 0). A chunk past the end of the file or a raw chunk of the wrong
+    /// size is an input error once the layout is known: OpenVDB's reader (io/Compression.cc)
+    /// allocates n bytes before reading them, and reads -n raw bytes into the leaf's buffer.
+    const uint8_t* chunk(int64_t n, uint64_t expected_raw) {
+        if (n == std::numeric_limits<int64_t>::min() ||
+            (n <= 0 && static_cast<uint64_t>(-n) != expected_raw))
+            broken("a raw chunk of " +
+                   (n == std::numeric_limits<int64_t>::min() ? std::string("2^63")
+                                                             : std::to_string(-n)) +
+                   " bytes at byte " + std::to_string(m_pos) + ", expected " +
+                   std::to_string(expected_raw));
+        const uint64_t bytes = n <= 0 ? expected_raw : static_cast<uint64_t>(n);
+        if (bytes > m_size - m_pos)
+            broken("truncated: a chunk of " + std::to_string(bytes) + " bytes at byte " +
+                   std::to_string(m_pos) + ", the file has " + std::to_string(m_size));
+        return take(bytes);
+    }
     std::string string() {
         const int32_t n = get<int32_t>();
         if (n < 0)
@@ -124,9 +154,15 @@ class Cursor {
     }
 
   private:
+    [[noreturn]] void broken(const std::string& why) const {
+        if (m_where)
+            throw_input_error(*m_where + ": " + why);
+        decline(why);
+    }
     const uint8_t* m_data;
     size_t m_size;
     size_t m_pos = 0;
+    const std::string* m_where = nullptr;
 };
 
 /// libblosc, loaded on first use like OpenVDB itself (it is OpenVDB's own dependency, so it is
@@ -158,13 +194,11 @@ void read_data(Cursor& in, uint32_t compression, float* out, uint32_t count) {
     const uint64_t bytes = uint64_t(count) * sizeof(float);
     if (compression & (kCompressBlosc | kCompressZip)) {
         const int64_t n = in.get<int64_t>();
+        const uint8_t* src = in.chunk(n, bytes);
         if (n <= 0) {  // stored raw
-            if (static_cast<uint64_t>(-n) != bytes)
-                decline("a raw chunk of the wrong size");
-            std::memcpy(out, in.take(bytes), bytes);
+            std::memcpy(out, src, bytes);
             return;
         }
-        const uint8_t* src = in.take(static_cast<uint64_t>(n));
         if (compression & kCompressBlosc) {
             const Blosc* b = blosc();
             if (!b)
@@ -233,16 +267,14 @@ void skip_values(Cursor& in, uint32_t compression, uint32_t count, const uint64_
     const bool compact = (compression & kCompressActiveMask) && code != kNoMaskAndAllValues;
     const uint64_t stored = compact ? count_on(mask, static_cast<int>(count / 64)) : count;
     if (compression & (kCompressBlosc | kCompressZip)) {
-        const int64_t n = in.get<int64_t>();
-        if (n <= 0 && static_cast<uint64_t>(-n) != stored * sizeof(float))
-            decline("a raw chunk of the wrong size");
-        in.take(static_cast<uint64_t>(n <= 0 ? -n : n));
+        in.chunk(in.get<int64_t>(), stored * sizeof(float));
     } else {
         in.take(stored * sizeof(float));
     }
 }
 
 struct Tree {
+    std::string where;  ///< "context: path grid "name"", for input errors
     uint32_t compression = 0;
     std::vector<VoxelBlock> leaves;  ///< in file order (their values are read later)
     std::vector<VoxelBlock> tiles;   ///< active tiles cut into 8³ blocks of one value
@@ -307,6 +339,8 @@ void read_internal(Cursor& in, Tree& tree, IVec3 origin, std::vector<float>& val
             const uint32_t i = static_cast<uint32_t>(w * 64 + __builtin_ctzll(word));
             const IVec3 lo = origin + (local(i) << kChildTotal);
             const int edge = 1 << kChildTotal;
+            if (tree.active_voxels + uint64_t(edge) * edge * edge > kMaxTileVoxels)
+                throw_input_error(tree.where + ": active tiles cover more than 2^27 voxels");
             tree.tile_values.emplace_back(VoxelBlock::kVoxels, values[i]);
             ++tree.active_tiles;
             tree.active_voxels += uint64_t(edge) * edge * edge;
@@ -397,7 +431,26 @@ struct Descriptor {
     uint64_t grid = 0, block = 0, end = 0;
 };
 
-LoadedGrid read_grid(const std::string& path, const std::string& wanted) {
+/// The transform must map index space to world space and back (OpenVDB's maps are affine).
+void check_transform(const glm::dmat4& m, const std::string& where) {
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            if (!std::isfinite(m[i][j]))
+                throw_input_error(where + ": the transform holds a non-finite number");
+    if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+        throw_input_error(where + ": the transform is not affine");
+    const double det = glm::determinant(glm::dmat3(m));
+    const glm::dmat4 inverse = glm::inverse(m);
+    bool finite = std::isfinite(det) && det != 0.0;
+    for (int i = 0; i < 4 && finite; ++i)
+        for (int j = 0; j < 4; ++j)
+            finite = finite && std::isfinite(inverse[i][j]);
+    if (!finite)
+        throw_input_error(where + ": the transform is not invertible");
+}
+
+LoadedGrid read_grid(const std::string& path, const std::string& wanted,
+                     const std::string& context) {
     const MappedFile file(path);
     Cursor in(file.data(), file.size());
     if (in.get<int64_t>() != 0x56444220)  // "VDB "
@@ -457,11 +510,14 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted) {
     loaded.grid_name = d->name;
     in.seek(d->grid);
     Tree tree;
+    tree.where = (context.empty() ? path : context + ": " + path) + " grid \"" + d->name + "\"";
     tree.compression = in.get<uint32_t>();
     if (tree.compression & ~(kCompressZip | kCompressActiveMask | kCompressBlosc))
         decline("unknown compression flags");
+    in.set_where(&tree.where);
     in.skip_metadata();
     loaded.index_to_world = read_transform(in);
+    check_transform(loaded.index_to_world, tree.where);
     if (in.get<int32_t>() != 1)
         decline("a buffer count other than 1");
     const float background = in.get<float>();
@@ -470,15 +526,19 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted) {
     const uint32_t root_tiles = in.get<uint32_t>(), root_children = in.get<uint32_t>();
     for (uint32_t i = 0; i < root_tiles; ++i) {
         in.take(3 * sizeof(int32_t) + sizeof(float));
-        if (in.get<uint8_t>() != 0)
-            decline("an active root tile");
+        if (in.get<uint8_t>() != 0)  // 4096³ voxels
+            throw_input_error(tree.where + ": active tiles cover more than 2^27 voxels");
     }
+    if (in.pos() > d->block)
+        decline("the topology starts past the grid's data");
     tree.leaves.reserve((d->block - in.pos()) /
                         sizeof(VoxelBlock::active));  // a bound: 64-byte masks
     std::vector<float> scratch;
     for (uint32_t i = 0; i < root_children; ++i) {
         int32_t o[3];
         std::memcpy(o, in.take(sizeof(o)), sizeof(o));
+        if ((o[0] | o[1] | o[2]) & 4095)  // RootNode keys: origins of 4096³ children
+            decline("a root child off the 4096-voxel lattice");
         read_internal<5>(in, tree, IVec3(o[0], o[1], o[2]), scratch);
     }
     if (in.pos() != d->block)
@@ -504,6 +564,16 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted) {
         return loaded;
     }
 
+    const glm::i64vec3 extent =
+        glm::i64vec3(tree.box_max) - glm::i64vec3(tree.box_min) + glm::i64vec3(1);
+    const glm::i64vec3 bricks =
+        (extent + glm::i64vec3(2 + DensityGrid::kBrick - 1)) / glm::i64vec3(DensityGrid::kBrick);
+    if (glm::any(glm::greaterThan(extent, glm::i64vec3(kMaxEdgeVoxels))) ||
+        static_cast<uint64_t>(bricks.x * bricks.y) * static_cast<uint64_t>(bricks.z) >
+            kMaxBrickSlots)
+        throw_input_error(tree.where + ": the active voxels span " + std::to_string(extent.x) +
+                          " x " + std::to_string(extent.y) + " x " + std::to_string(extent.z) +
+                          " voxels, more than a grid may hold (2^24 per axis, 2^33 in all)");
     const size_t floats = leaves * VoxelBlock::kVoxels;
     std::unique_ptr<float[]> values(new float[floats]);  // every float is written below
     advise_huge_pages(values.get(), floats * sizeof(float));
@@ -514,6 +584,7 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted) {
                           try {
                               for (size_t i = r.begin(); i != r.end(); ++i) {
                                   Cursor c(file.data(), file.size(), values_at[i]);
+                                  c.set_where(&tree.where);
                                   float* dest = values.get() + i * VoxelBlock::kVoxels;
                                   read_values(c, tree.compression, dest, VoxelBlock::kVoxels,
                                               tree.leaves[i].active.data(), buffer);
@@ -539,9 +610,10 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted) {
 
 std::optional<LoadedGrid> read_density_grid_direct(const std::string& path,
                                                    const std::string& grid_name,
-                                                   std::string* why_not) {
+                                                   std::string* why_not,
+                                                   const std::string& context) {
     try {
-        return read_grid(path, grid_name);
+        return read_grid(path, grid_name, context);
     } catch (const Declined& e) {
         if (why_not)
             *why_not = e.why;

@@ -34,9 +34,13 @@ namespace kasumi {
 
 /// Reads like load_density_grid (same grid choice, transform, counts and DensityGrid, bit for
 /// bit), or returns nullopt with the reason in `why_not` when the file is not one this reader
-/// handles or is broken in any way. Does not throw for anything in the file.
+/// handles or is broken in any way. Throws Error (Input; message starting with `context`, then
+/// the path and grid) only for what no reader could load: a transform that is not finite,
+/// affine and invertible, active tiles over 2^30 voxels, active voxels spanning more than 2^24
+/// per axis or 2^26 bricks (2^35 voxels); OpenVDB's path would allocate until it fails there.
 std::optional<LoadedGrid> read_density_grid_direct(const std::string& path,
                                                    const std::string& grid_name,
-                                                   std::string* why_not = nullptr);
+                                                   std::string* why_not = nullptr,
+                                                   const std::string& context = std::string());
 
 }  // namespace kasumi

@@ -32,7 +32,8 @@ LoadedGrid load_density_grid(const std::string& path, const std::string& grid_na
     // through it. KASUMI_VDB_DIRECT=0 always takes OpenVDB's path.
     const char* direct = std::getenv("KASUMI_VDB_DIRECT");
     if (!(direct && std::strcmp(direct, "0") == 0)) {
-        if (std::optional<LoadedGrid> loaded = read_density_grid_direct(path, grid_name))
+        if (std::optional<LoadedGrid> loaded =
+                read_density_grid_direct(path, grid_name, nullptr, context))
             return std::move(*loaded);
     }
     return load_density_grid_openvdb(path, grid_name, context);
