@@ -5,13 +5,18 @@
 #include "volume/medium_json.h"
 #include "volume/vdb_io.h"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <string>
 
 namespace kasumi::test {
 
+/// One directory per process: ctest runs each test case as its own process, in parallel, and
+/// a file rewritten by one while another has it mapped kills the reader with SIGBUS.
 inline std::string temp_grid_path(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / "kasumi_vdb_tests";
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("kasumi_vdb_tests_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     return (dir / (name + ".vdb")).string();
 }
