@@ -1,6 +1,7 @@
 #include "volume/vdb_direct.h"
 
 #include "core/error.h"
+#include "core/zeroed_allocator.h"
 #include "volume/density_grid_build.h"
 
 #include <tbb/blocked_range.h>
@@ -408,21 +409,6 @@ glm::dmat4 read_transform(Cursor& in) {
         decline("map " + type);
     }
     return m;
-}
-
-/// Asks for transparent huge pages on the 2 MB-aligned part of a large buffer before it is
-/// first touched (as density_grid_build.cpp does for the bricks): fewer page faults.
-void advise_huge_pages(void* data, size_t bytes) {
-#ifdef MADV_HUGEPAGE
-    constexpr uintptr_t kHuge = uintptr_t(2) << 20;
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kHuge - 1);
-    if (end > begin)
-        ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#else
-    (void)data;
-    (void)bytes;
-#endif
 }
 
 struct Descriptor {
