@@ -38,6 +38,13 @@ install_packages() {
 }
 
 build() {  # build PRESET
+  # Reuse earlier compilations when ccache is installed (not required: a fresh machine builds
+  # everything). The base dir and no-hash-dir settings let a new clone at another path hit.
+  if command -v ccache >/dev/null 2>&1; then
+    export CMAKE_C_COMPILER_LAUNCHER="${CMAKE_C_COMPILER_LAUNCHER:-ccache}"
+    export CMAKE_CXX_COMPILER_LAUNCHER="${CMAKE_CXX_COMPILER_LAUNCHER:-ccache}"
+    export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
+  fi
   cmake --preset "$1" >/dev/null
   cmake --build --preset "$1" -j "$jobs"
 }
