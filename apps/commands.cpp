@@ -82,6 +82,7 @@ void add_render_command(CLI::App& root) {
         int64_t frame = 0;
         std::string aovs = "all";
         std::string compression = "zip";
+        std::string pixel_type;
     };
     auto options = std::make_shared<Options>();
     CLI::App* cmd = root.add_subcommand("render", "render a scene to EXR and a PNG preview");
@@ -105,10 +106,16 @@ void add_render_command(CLI::App& root) {
                     "albedo, depth, surface, volume, transmittance");
     cmd->add_option("--compression", options->compression,
                     "EXR compression, all lossless: zip (default), piz, rle, none");
+    cmd->add_option("--pixel-type", options->pixel_type,
+                    "EXR pixel type of R, G, B, A (overrides film.pixel_type): float (default) "
+                    "or half (AOVs stay float; beyond 65504 saturates, with a warning)")
+        ->check(CLI::IsMember({"float", "half"}));
     cmd->callback([options] {
         SceneOptions scene_options = options->scene;
         if (options->spp > 0)
             scene_options.sets.push_back("/film/spp=" + std::to_string(options->spp));
+        if (!options->pixel_type.empty())
+            scene_options.sets.push_back("/film/pixel_type=\"" + options->pixel_type + "\"");
         if (options->seed >= 0)
             scene_options.sets.push_back("/render/seed=" + std::to_string(options->seed));
         if (!options->res.empty()) {
@@ -177,10 +184,13 @@ void add_render_command(CLI::App& root) {
 
         times.render_s = result.seconds;
         const auto write_start = std::chrono::steady_clock::now();
-        write_render_outputs(runtime, result, paths, times);
+        const ExrWriteReport written = write_render_outputs(runtime, result, paths, times);
         times.write_s = seconds_since(write_start);
-        if (scene_options.verbose)
+        if (scene_options.verbose) {
             std::fputs(format_stats(runtime, result, times).c_str(), stderr);
+            std::fputs(format_write_stats(runtime, written).c_str(), stderr);
+        }
+        std::fputs(half_saturation_warning(written, paths.exr).c_str(), stderr);
         if (!scene_options.quiet) {
             std::fprintf(stderr, "wrote %s%s%s (%.2f s)\n", paths.exr.c_str(),
                          paths.preview.empty() ? "" : " and ", paths.preview.c_str(),

@@ -38,8 +38,8 @@ void parse_output_format(const std::string& aovs_text, const std::string& compre
                                           compression_text + "\"");
 }
 
-void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
-                          const OutputPaths& paths, const StageTimes& times) {
+ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
+                                    const OutputPaths& paths, const StageTimes& times) {
     const SceneDesc& desc = scene.desc();
     // The EXR is written straight from the film's planes; `image` carries size and metadata,
     // and R, G, B only if a preview is wanted.
@@ -73,9 +73,12 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
         image.metadata.push_back(std::move(kv));
     make_parent_dirs(paths.exr);
     std::vector<ExrChannelView> channels;
-    for (const FilmPlane& plane : result.film.planes(paths.aovs))
-        channels.push_back({plane.name, plane.data});
-    write_exr(image, channels, paths.exr, paths.compression);
+    for (const FilmPlane& plane : result.film.planes(paths.aovs)) {
+        // The first four planes are R, G, B, A (Film::planes); AOVs stay float.
+        channels.push_back({plane.name, plane.data,
+                            channels.size() < 4 ? desc.film.pixel_type : ExrPixelType::Float});
+    }
+    const ExrWriteReport report = write_exr(image, channels, paths.exr, paths.compression);
     if (!paths.preview.empty()) {
         const size_t pixels = static_cast<size_t>(image.width) * image.height;
         for (size_t i = 0; i < 3; ++i) {  // R, G, B
@@ -89,6 +92,30 @@ void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
         preview.exposure_stops = desc.render.preview.exposure_stops;
         write_preview_png(image, paths.preview, preview);
     }
+    return report;
+}
+
+std::string format_write_stats(const SceneRuntime& scene, const ExrWriteReport& report) {
+    std::ostringstream out;
+    const ExrPixelType type = scene.desc().film.pixel_type;
+    out << "  exr pixel type      " << exr_pixel_type_name(type) << " (R, G, B, A)\n";
+    if (type == ExrPixelType::Half) {
+        out << "  half saturated      " << report.half_saturated << " (|value| > 65504, written as "
+            << "65504; largest |value| " << report.half_max_abs << ")\n";
+        out << "  half flushed to 0   " << report.half_flushed_to_zero
+            << " (non-zero |value| < 2^-25)\n";
+    }
+    return out.str();
+}
+
+std::string half_saturation_warning(const ExrWriteReport& report, const std::string& path) {
+    if (report.half_saturated == 0)
+        return "";
+    std::ostringstream out;
+    out << "kasumi: warning: " << path << ": " << report.half_saturated
+        << " values of R, G, B, A exceed the half-float range (largest " << report.half_max_abs
+        << ") and were written as 65504; --pixel-type float keeps them\n";
+    return out.str();
 }
 
 std::string format_stats(const SceneRuntime& scene, const RenderResult& result,

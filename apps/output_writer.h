@@ -25,9 +25,17 @@ void parse_output_format(const std::string& aovs_text, const std::string& compre
 
 /// Creates parent directories, then writes both files atomically (temporary name, rename).
 /// The EXR metadata holds the stage times given (written as kasumi/time/<stage>_s: write_exr adds
-/// the prefix) and the plan's stages that ran and were skipped.
-void write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
-                          const OutputPaths& paths, const StageTimes& times = {});
+/// the prefix) and the plan's stages that ran and were skipped. R, G, B, A are written as the
+/// scene's film.pixel_type (AOVs as float); the report says what half saturated.
+ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
+                                    const OutputPaths& paths, const StageTimes& times = {});
+
+/// The -v lines on the EXR's pixel type (and, for half, the values saturated or flushed to 0).
+std::string format_write_stats(const SceneRuntime& scene, const ExrWriteReport& report);
+
+/// A one-line warning when half output saturated values (empty otherwise): how many, the
+/// largest value, and that --pixel-type float keeps them.
+std::string half_saturation_warning(const ExrWriteReport& report, const std::string& path);
 
 /// Render statistics as lines for -v.
 std::string format_stats(const SceneRuntime& scene, const RenderResult& result,

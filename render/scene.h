@@ -2,6 +2,7 @@
 /// The scene description: plain values read from a scene file and validated, before anything
 /// is built. Units: metres, lux, candela, cd/m², 1/m.
 #include "core/camera.h"
+#include "core/exr_io.h"
 #include "lights/light.h"
 #include "render/gi_settings.h"
 #include "render/photon_settings.h"
@@ -23,6 +24,8 @@ struct FilmDesc {
     int height = 360;    ///< pixels, 1..16384
     int spp = 16;        ///< samples per pixel, >= 1
     bool jitter = true;  ///< false: every sample through the pixel centre (peer comparisons)
+    /// EXR pixel type of R, G, B, A (AOVs stay float); half saturates beyond 65504 (exr_io.h)
+    ExrPixelType pixel_type = ExrPixelType::Float;
 };
 
 struct PreviewDesc {

@@ -58,6 +58,10 @@ FilmDesc parse_film(const JsonNode& node) {
         film.spp = parse_int_in(*v, 1, 1 << 20);
     if (auto v = reader.optional("jitter"))
         film.jitter = v->as_bool();
+    if (auto v = reader.optional("pixel_type")) {
+        if (!parse_exr_pixel_type(v->as_string(), film.pixel_type))
+            v->fail("must be \"float\" or \"half\"");
+    }
     reader.finish();
     return film;
 }

@@ -313,9 +313,10 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         const double render_seconds = result.seconds;
         const uint64_t nonfinite = result.counters.nonfinite_samples;
         const std::string reuse_line = reuse_text(reuse);
+        const ExrPixelType pixel_type = runtime.desc().film.pixel_type;
 
         dispatch([&, frame, path, preview_path, preview, frame_name, main_seconds, setup_seconds,
-                  image_seconds, render_seconds, nonfinite, reuse_line,
+                  image_seconds, render_seconds, nonfinite, reuse_line, pixel_type,
                   image = std::move(image)]() mutable {
             const auto write_start = Clock::now();
             if (!preview_path.empty()) {
@@ -323,7 +324,8 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
                 write_preview_png(image, preview_path, preview);
             }
             make_parent_dirs(path);
-            write_exr(image, path, options.compression);
+            const ExrWriteReport half_report =
+                write_exr(image, path, options.compression, pixel_type);
             if (want_sheet)
                 thumbnails.emplace(frame, make_thumbnail(image));
             const double write_seconds = image_seconds + seconds_since(write_start);
@@ -338,6 +340,14 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
             if (nonfinite > 0) {
                 log_line(options.log, "frame %s  warning: %llu non-finite samples were dropped\n",
                          frame_name.c_str(), static_cast<unsigned long long>(nonfinite));
+            }
+            if (half_report.half_saturated > 0) {
+                log_line(options.log,
+                         "frame %s  warning: %llu values of R, G, B, A beyond the half range "
+                         "(largest %g) written as 65504 (film.pixel_type half)\n",
+                         frame_name.c_str(),
+                         static_cast<unsigned long long>(half_report.half_saturated),
+                         static_cast<double>(half_report.half_max_abs));
             }
             image.metadata.clear();
             std::lock_guard<std::mutex> lock(spare_mutex);
