@@ -35,8 +35,9 @@ Matching (from POV-Ray 3.7 source/backend/interior/media.cpp and lighting/point.
   cosine from the centre (area_illumination off); a sphere fully above a surface lights it
   exactly like a point at its centre, so the unshadowed light agrees.
 - Pixels: one ray through each pixel centre in both (POV without +A; kasumi film.jitter false),
-  --res W x H in both (the scenes say 320 x 240). Output: POV an RGB EXR, kasumi --aovs none
-  (R, G, B, A; no AOV channels).
+  --res W x H in both (the scenes say 320 x 240). Output: POV an RGB EXR in half floats, kasumi
+  --aovs none --pixel-type half (R, G, B, A in half floats; --kasumi-pixel-type float for 32-bit;
+  references always float).
 Residual mismatch of the two converged references is printed (RMSE relative to the mean, and
 the least-squares scale s minimising |s POV - kasumi|); each renderer's error is measured against
 its OWN converged reference, so the time ratios do not depend on that residual.
@@ -243,10 +244,13 @@ def render_pov(args, scene, quality, name, threads):
     return wall, cpu, os.path.join(args.out, name + ".exr")
 
 
-def render_k(args, scene_path, name, spp, sets, seed, threads):
+def render_k(args, scene_path, name, spp, sets, seed, threads, reference=False):
     out = os.path.join(args.out, name + ".exr")
-    # R, G, B, A only, as POV-Ray writes (no AOV channels); the image size of --res.
+    # R, G, B, A only, as POV-Ray writes R, G, B (no AOV channels); the image size of --res.
+    # The sweep's images in half floats as POV-Ray's (+FE writes HALF), the references in float.
     extra = ["--aovs", "none", "--res", "%dx%d" % args.res]
+    if not reference:
+        extra += ["--pixel-type", args.kasumi_pixel_type]
     for s in sets:
         extra += ["--set", s]
     _, wall, cpu, _ = bench_common.render_kasumi(args.kasumi, scene_path, out, spp, seed,
@@ -291,7 +295,8 @@ def run_case(args, case):
         name = "%s_kasumi_ref_%c" % (case, "ab"[k])
         path = os.path.join(args.out, name + ".exr")
         if not os.path.exists(path):
-            w, _, _ = render_k(args, scene_path, name, k_ref_spp // 2, k_ref_sets, seed, 0)
+            w, _, _ = render_k(args, scene_path, name, k_ref_spp // 2, k_ref_sets, seed, 0,
+                               reference=True)
             print("%s: kasumi reference half %d (%d spp, %s) in %.1f s wall" %
                   (case, k, k_ref_spp // 2, " ".join(k_ref_sets), w), flush=True)
         k_refs.append(path)
@@ -428,6 +433,8 @@ def main():
     ap.add_argument("--pov-area", default=POV_AREA_SETTINGS,
                     help="soft case: POV-Ray area-light n:adaptive list (adaptive 'none': "
                     "every one of the n x n lights traced, no adaptive keyword)")
+    ap.add_argument("--kasumi-pixel-type", default="half", choices=("half", "float"),
+                    help="EXR pixel type of kasumi's sweep images (references: float)")
     ap.add_argument("--kasumi-steps", default=KASUMI_MEDIA_STEPS,
                     help="fog cases: kasumi render.volume.step_m list (1 spp each)")
     ap.add_argument("--kasumi-intervals", default="",
