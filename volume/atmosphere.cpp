@@ -14,6 +14,20 @@ DensityProfile DensityProfile::exponential(double scale_height_m) {
     return p;
 }
 
+DensityProfile DensityProfile::us_standard_1976() {
+    constexpr double kTropopauseM = 11000.0;
+    constexpr double kDensityAtTropopause = 0.36392 / 1.2250;  // Table I, kg/m³ over sea level
+    constexpr double kStratosphereScaleM = 6341.6;  // 8.31432 x 216.65 / (0.0289644 x 9.80665)
+    const double troposphere_scale_m = kTropopauseM / std::log(1.0 / kDensityAtTropopause);
+    DensityProfile p;
+    p.lower_width_m = kTropopauseM;
+    p.lower.exp_term = 1.0;
+    p.lower.exp_scale_per_m = -1.0 / troposphere_scale_m;
+    p.upper.exp_term = kDensityAtTropopause * std::exp(kTropopauseM / kStratosphereScaleM);
+    p.upper.exp_scale_per_m = -1.0 / kStratosphereScaleM;
+    return p;
+}
+
 DensityProfile DensityProfile::tent(double center_m, double half_width_m) {
     DensityProfile p;
     p.lower_width_m = center_m;

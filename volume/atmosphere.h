@@ -40,6 +40,13 @@ struct DensityProfile {
     }
     /// exp(-h / scale_height_m), the profile of well-mixed gases and aerosols.
     static DensityProfile exponential(double scale_height_m);
+    /// The air of the U.S. Standard Atmosphere 1976 (NOAA/NASA/USAF, Table I) relative to sea
+    /// level (1.2250 kg/m³) in two exponential layers through its densities at 0, 11 km
+    /// (0.36392 kg/m³) and 32 km (0.013225, within 0.3%): scale height 9063 m in the
+    /// troposphere and 6341.6 m above 11 km (the isothermal 216.65 K stratosphere,
+    /// H = R T / (M g0)); within 4% of the table up to 11 km and 6% up to 40 km. The single
+    /// 8 km exponential has 1.1-1.6 times the real air at 20-30 km, where twilight is made.
+    static DensityProfile us_standard_1976();
     /// A tent: 0 at centre ± half_width, 1 at the centre (the ozone layer of Bruneton 2017).
     static DensityProfile tent(double center_m, double half_width_m);
     /// Integral of the density over altitude from the ground to top_altitude_m, metres (the

@@ -156,8 +156,19 @@ Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& nm,
         JsonObjectReader r(*v);
         if (const auto s = r.optional("scattering"))
             a.rayleigh.scattering = read_coefficient(*s, nm, rgb_nm, AutoCoefficient::Rayleigh);
-        if (const auto h = r.optional("scale_height_m"))
+        const auto h = r.optional("scale_height_m");
+        if (h)
             a.rayleigh.profile = DensityProfile::exponential(positive_double(*h));
+        if (const auto p = r.optional("profile")) {
+            const std::string name = p->as_string();
+            if (name == "us_standard_1976") {
+                if (h)
+                    h->fail("scale_height_m goes with \"profile\": \"exponential\" only");
+                a.rayleigh.profile = DensityProfile::us_standard_1976();
+            } else if (name != "exponential") {
+                p->fail("expected \"exponential\" or \"us_standard_1976\"");
+            }
+        }
         r.finish();
     }
     if (const auto v = reader.optional("mie")) {
