@@ -4,6 +4,7 @@
 #include "volume/sky_reference.h"
 
 #include <tbb/parallel_for.h>
+#include <array>
 
 namespace kasumi {
 
@@ -357,23 +358,43 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
     const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
     Bands tau{}, ts, ms;
     if (t_end - t_enter < kShortSegmentM && !(ground && t_max >= t_exit)) {
-        // Short segment (aerial perspective over a scene): coefficients and light taken at its
-        // middle, integrated in closed form as a homogeneous stretch,
-        // L = S (1 - exp(-sigma_t L)) / sigma_t. Over 1 km the altitude changes by at most
-        // 1 km and the relative error is O((1 km / H)^2) for scale height H.
+        // Short segment (aerial perspective over a scene) in one piece by Simpson's rule on
+        // its ends and middle: optical depth tau = L (sigma_0 + 4 sigma_m + sigma_1) / 6, and
+        // the light L_in = (1 - e^-tau) L / tau times the mean of the source S (scattering
+        // coefficients times the phases and the sun and multiple-scattering light) over the
+        // three nodes, each weighted by its transmittance from the start. Exact for
+        // homogeneous air at any optical depth; for an exponential layer the relative error is
+        // (L cos theta / H)^4 / 2880, 1.7e-4 for a vertical kilometre of the 1.2 km aerosol.
+        // (The coefficients of the middle alone, as before, made that layer's depth 2.8% too
+        // small, by the factor (L/2H) / sinh(L/2H); tests/volume/published_atmosphere_test.cpp.)
         const double length = t_end - t_enter;
-        const DVec3 x = p + (t_enter + 0.5 * length) * d;
-        const DVec3 up_vec = x - a.center();
-        const double r = glm::length(up_vec);
-        const AtmosphereCoefficients c = atmosphere_coefficients(a, r - m_rg);
-        sun_transmittance(sky, x, ts);
-        multiple_scattering(r, glm::dot(up_vec / r, sky.sun_direction), ms);
+        std::array<Bands, 3> source{}, sigma_t{};
+        for (int k = 0; k < 3; ++k) {
+            const DVec3 x = p + (t_enter + 0.5 * k * length) * d;
+            const DVec3 up_vec = x - a.center();
+            const double r = glm::length(up_vec);
+            const AtmosphereCoefficients c = atmosphere_coefficients(a, r - m_rg);
+            sun_transmittance(sky, x, ts);
+            multiple_scattering(r, glm::dot(up_vec / r, sky.sun_direction), ms);
+            for (int i = 0; i < n; ++i) {
+                source[k][i] = (c.sigma_s_rayleigh[i] * p_r + c.sigma_s_mie[i] * p_m) * ts[i] +
+                               (c.sigma_s_rayleigh[i] + c.sigma_s_mie[i]) * ms[i];
+                sigma_t[k][i] = c.sigma_t[i];
+            }
+        }
         for (int i = 0; i < n; ++i) {
-            const double tau_i = c.sigma_t[i] * length;
-            // (1 - e^-tau) / sigma_t, written with expm1 and its limit `length` as tau -> 0.
-            const double path = tau_i > 1e-12 ? -std::expm1(-tau_i) / c.sigma_t[i] : length;
-            radiance[i] = path * ((c.sigma_s_rayleigh[i] * p_r + c.sigma_s_mie[i] * p_m) * ts[i] +
-                                  (c.sigma_s_rayleigh[i] + c.sigma_s_mie[i]) * ms[i]);
+            const double s0 = sigma_t[0][i], sm = sigma_t[1][i], s1 = sigma_t[2][i];
+            const double tau_i = length * (s0 + 4.0 * sm + s1) / 6.0;
+            // Depth to the middle: the integral of the parabola through the three nodes over
+            // the first half.
+            const double tau_mid = std::max(0.0, length * (5.0 * s0 + 8.0 * sm - s1) / 24.0);
+            const double w_mid = 4.0 * std::exp(-tau_mid), w_end = std::exp(-tau_i);
+            const double mean_source =
+                (source[0][i] + w_mid * source[1][i] + w_end * source[2][i]) /
+                (1.0 + w_mid + w_end);
+            // (1 - e^-tau) L / tau, written with expm1 and its limit `length` as tau -> 0.
+            const double path = tau_i > 1e-12 ? -std::expm1(-tau_i) * length / tau_i : length;
+            radiance[i] = path * mean_source;
             transmittance_out[i] = std::exp(-tau_i);
         }
         return;

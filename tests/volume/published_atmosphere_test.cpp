@@ -185,6 +185,69 @@ TEST(PublishedUsStandardAtmosphere, RayleighProfileFollowsTheTableToFortyKilomet
               std::string::npos);
 }
 
+TEST(PublishedHeightFog, ShortSegmentsIntegrateTheExponentialProfile) {
+    // The air between the camera and a surface under 1 km away is integrated in one piece
+    // (SkyLuts::march). Along a straight path from altitude h0 to h1 at zenith angle theta an
+    // exponential layer has the optical depth sigma0 H (e^{-h0/H} - e^{-h1/H}) / cos theta
+    // (the height-fog closed form; plane-parallel: over 1 km the Earth's curvature moves the
+    // path by < 0.08 m). Taking the coefficients at the segment's middle instead underestimates
+    // the aerosols (H = 1.2 km) of a vertical kilometre by 2.8% (their depth by the factor
+    // sinh(L/2H) 2H/L) and its in-scattered light likewise. Compared: optical depth against the
+    // closed form (relative 2e-4) and radiance against a 4096-node midpoint quadrature of the
+    // same integrand through the same tables (relative 2e-3), from 1 m up at zenith angles 0,
+    // 45, 75°, toward and away from a 30° sun.
+    const Atmosphere a = default_earth_atmosphere(kRgbNm, kRgbNm);
+    SunDesc sun;
+    sun.elevation_deg = 30.0;
+    sun.azimuth_deg = 0.0;
+    const auto sky = make_sky_scene(a, sun, SkySettings{});
+    const SkyLuts luts(*sky);
+    const double length = 999.0, h0 = 1.0;
+    for (const double zenith_deg : {0.0, 45.0, 75.0}) {
+        for (const double azimuth_deg : {0.0, 180.0}) {
+            const double z = deg(zenith_deg), az = deg(azimuth_deg);
+            const DVec3 p(0.0, h0, 0.0);
+            const DVec3 d = sun_direction(90.0 - zenith_deg, azimuth_deg);
+            ASSERT_NEAR(d.y, std::cos(z), 1e-12) << az;
+            Bands radiance{}, transmittance{};
+            luts.march(*sky, p, d, length, 24, radiance, transmittance);
+            // Reference: closed-form depth, fine quadrature of the light.
+            const double h1 = h0 + length * std::cos(z);
+            const auto layer = [&](double sigma0, double scale_m) {
+                return sigma0 * scale_m * (std::exp(-h0 / scale_m) - std::exp(-h1 / scale_m)) /
+                       std::cos(z);
+            };
+            const double mu = glm::dot(d, sky->sun_direction);
+            const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
+            const int nodes = 4096;
+            const double dt = length / nodes;
+            Bands fine{}, tau{}, ts{}, ms{};
+            for (int k = 0; k < nodes; ++k) {
+                const DVec3 x = p + (k + 0.5) * dt * d;
+                const DVec3 up = x - a.center();
+                const double r = glm::length(up);
+                const AtmosphereCoefficients c = atmosphere_coefficients(a, r - a.ground_radius_m);
+                luts.sun_transmittance(*sky, x, ts);
+                luts.multiple_scattering(r, glm::dot(up / r, sky->sun_direction), ms);
+                for (int b = 0; b < 3; ++b) {
+                    fine[b] += std::exp(-(tau[b] + 0.5 * c.sigma_t[b] * dt)) * dt *
+                               ((c.sigma_s_rayleigh[b] * p_r + c.sigma_s_mie[b] * p_m) * ts[b] +
+                                (c.sigma_s_rayleigh[b] + c.sigma_s_mie[b]) * ms[b]);
+                    tau[b] += c.sigma_t[b] * dt;
+                }
+            }
+            for (int b = 0; b < 3; ++b) {
+                const double depth = layer(a.rayleigh.scattering[b], 8000.0) +
+                                     layer(a.mie.scattering[b] + a.mie.absorption[b], 1200.0);
+                EXPECT_NEAR(-std::log(transmittance[b]) / depth, 1.0, 2e-4)
+                    << zenith_deg << "° az " << azimuth_deg << " band " << b;
+                EXPECT_NEAR(radiance[b] / fine[b], 1.0, 2e-3)
+                    << zenith_deg << "° az " << azimuth_deg << " band " << b;
+            }
+        }
+    }
+}
+
 /// Horizontal illuminance of the sky alone (all orders, the ground's reflections included; the
 /// sun's disc is below the horizon), lux, from the fast mode's ground irradiance table.
 double sky_illuminance_lux(const Atmosphere& a, double sun_elevation_deg) {
