@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -22,6 +23,8 @@
 
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <setjmp.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -80,12 +83,94 @@ class MappedFile {
     MappedFile& operator=(const MappedFile&) = delete;
     const uint8_t* data() const { return m_data; }
     size_t size() const { return m_size; }
+    /// The file's size now (another process may have cut it since it was mapped).
+    uint64_t size_now() const {
+        struct stat st {};
+        return ::fstat(m_fd, &st) == 0 ? static_cast<uint64_t>(st.st_size) : 0;
+    }
 
   private:
     int m_fd = -1;
     const uint8_t* m_data = nullptr;
     size_t m_size = 0;
 };
+
+/// A read of the mapped file that survives the file being cut while it is read. Pages of a
+/// mapping past the file's new end raise SIGBUS on access (even with MAP_POPULATE: truncation
+/// unmaps them), so another process rewriting the .vdb killed the renderer. While a thread runs
+/// `body` under a guard, a SIGBUS at an address of the mapping jumps back here instead; a
+/// SIGBUS anywhere else goes to the handler that was installed before ours (by default: the
+/// crash it always was). What `body` was doing is abandoned: a zip or blosc call cut short
+/// leaks its small work buffers, once, on a run that then stops with an input error.
+class SigbusGuard {
+  public:
+    SigbusGuard(const uint8_t* data, size_t size) : m_begin(data), m_end(data + size) { install(); }
+    /// Runs `body`; false if it touched a page of the mapping that the file no longer has.
+    /// Objects that `body` creates and a jump skips are not destroyed: keep what owns memory
+    /// outside it.
+    template <class Body>
+    bool run(Body&& body) const {
+        Active active{this, t_active, {}};
+        const Restore restore{active.outer};  // also on an exception and after a jump
+        t_active = &active;
+        // sigsetjmp saves the signal mask (1): the handler runs with SIGBUS blocked, and a
+        // jump out of it must not leave it blocked for the next fault.
+        if (sigsetjmp(active.env, 1) != 0)
+            return false;
+        body();
+        return true;
+    }
+
+  private:
+    struct Active {
+        const SigbusGuard* guard;
+        Active* outer;
+        sigjmp_buf env;
+    };
+    struct Restore {
+        Active* outer;
+        ~Restore() { t_active = outer; }
+    };
+    static inline thread_local Active* t_active = nullptr;
+    static inline struct sigaction s_previous {};
+
+    static void install() {
+        static std::once_flag once;
+        std::call_once(once, [] {
+            struct sigaction action {};
+            action.sa_sigaction = &SigbusGuard::handle;
+            action.sa_flags = SA_SIGINFO;
+            sigemptyset(&action.sa_mask);
+            ::sigaction(SIGBUS, &action, &s_previous);
+        });
+    }
+    static void handle(int signal, siginfo_t* info, void* context) {
+        const Active* active = t_active;
+        const auto* address = static_cast<const uint8_t*>(info->si_addr);
+        if (active && address >= active->guard->m_begin && address < active->guard->m_end)
+            siglongjmp(const_cast<Active*>(active)->env, 1);
+        // Not ours: the previous handler, or the default action once this returns and the
+        // faulting access runs again.
+        if (s_previous.sa_flags & SA_SIGINFO) {
+            if (s_previous.sa_sigaction) {
+                s_previous.sa_sigaction(signal, info, context);
+                return;
+            }
+        } else if (s_previous.sa_handler != SIG_DFL && s_previous.sa_handler != SIG_IGN) {
+            s_previous.sa_handler(signal);
+            return;
+        }
+        ::signal(SIGBUS, SIG_DFL);
+    }
+
+    const uint8_t* m_begin;
+    const uint8_t* m_end;
+};
+
+std::function<void(const std::string&, const char*)>& read_hook() {
+    static std::function<void(const std::string&, const char*)> hook;
+    return hook;
+}
 
 /// A bounds-checked cursor over [0, size) of the mapped file.
 class Cursor {
@@ -257,10 +342,11 @@ void read_values(Cursor& in, uint32_t compression, float* dest, uint32_t count,
 }
 
 /// Skips what read_values reads, returning nothing; the position is kept for a later read.
+/// An unknown mask-compression code is skipped as OpenVDB reads it (io::readCompressedValues:
+/// no inactive values, no selection mask), so that the chunk sizes OpenVDB would read after it
+/// are checked here; read_values declines it.
 void skip_values(Cursor& in, uint32_t compression, uint32_t count, const uint64_t* mask) {
     const int8_t code = in.get<int8_t>();
-    if (code < 0 || code > kNoMaskAndAllValues)
-        decline("an unknown mask-compression code");
     if (code == 2 || code == 4 || code == 5)
         in.take(code == 5 ? 8 : 4);
     if (code >= 3 && code <= 5)
@@ -435,9 +521,22 @@ void check_transform(const glm::dmat4& m, const std::string& where) {
         throw_input_error(where + ": the transform is not invertible");
 }
 
-LoadedGrid read_grid(const std::string& path, const std::string& wanted,
-                     const std::string& context) {
-    const MappedFile file(path);
+/// What a read builds, kept outside the guarded reads (SigbusGuard::run): a jump out of them
+/// skips the destructors of what they created.
+struct ReadState {
+    std::vector<Descriptor> grids;
+    Tree tree;
+    std::vector<float> scratch;
+    std::vector<size_t> values_at;
+    std::unique_ptr<float[]> values;
+    std::string shifted_where;
+    LoadedGrid loaded;
+};
+
+/// The file's header and descriptors, the chosen grid's topology and the positions of its
+/// leaves' values; returns false when the grid is empty (nothing more to read).
+bool read_layout(const MappedFile& file, const std::string& path, const std::string& wanted,
+                 const std::string& context, ReadState& state) {
     Cursor in(file.data(), file.size());
     if (in.get<int64_t>() != 0x56444220)  // "VDB "
         decline("not a VDB file");
@@ -452,10 +551,11 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted,
     const int32_t count = in.get<int32_t>();
     if (count < 0)
         decline("a negative grid count");
-    std::vector<Descriptor> grids(static_cast<size_t>(std::min(count, 1 << 16)));
+    std::vector<Descriptor>& grids = state.grids;
+    grids.resize(static_cast<size_t>(std::min(count, 1 << 16)));
     if (static_cast<int32_t>(grids.size()) != count)
         decline("too many grids");
-    static const std::string kHalf = "_HalfFloat";
+    static const std::string kHalf = "_HalfFloat", kDensity = "density";
     for (Descriptor& d : grids) {
         d.name = in.string();
         d.type = in.string();
@@ -477,7 +577,7 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted,
     // The grid vdb_read.cpp picks: the one named; else "density"; else the first float grid in
     // name order (OpenVDB's File::beginName iterates a map sorted by name).
     const Descriptor* d = nullptr;
-    const std::string name = wanted.empty() ? std::string("density") : wanted;
+    const std::string& name = wanted.empty() ? kDensity : wanted;
     for (const Descriptor& g : grids)
         if (g.name == name)
             d = &g;
@@ -492,10 +592,10 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted,
         decline("grid type " + d->type + (d->half ? " (half)" : "") +
                 (d->instance ? " (an instance)" : ""));
 
-    LoadedGrid loaded;
+    LoadedGrid& loaded = state.loaded;
+    Tree& tree = state.tree;
     loaded.grid_name = d->name;
     in.seek(d->grid);
-    Tree tree;
     tree.where = (context.empty() ? path : context + ": " + path) + " grid \"" + d->name + "\"";
     tree.compression = in.get<uint32_t>();
     if (tree.compression & ~(kCompressZip | kCompressActiveMask | kCompressBlosc))
@@ -519,37 +619,101 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted,
         decline("the topology starts past the grid's data");
     tree.leaves.reserve((d->block - in.pos()) /
                         sizeof(VoxelBlock::active));  // a bound: 64-byte masks
-    std::vector<float> scratch;
     for (uint32_t i = 0; i < root_children; ++i) {
         int32_t o[3];
         std::memcpy(o, in.take(sizeof(o)), sizeof(o));
         if ((o[0] | o[1] | o[2]) & 4095)  // RootNode keys: origins of 4096³ children
             decline("a root child off the 4096-voxel lattice");
-        read_internal<5>(in, tree, IVec3(o[0], o[1], o[2]), scratch);
+        read_internal<5>(in, tree, IVec3(o[0], o[1], o[2]), state.scratch);
     }
-    if (in.pos() != d->block)
-        decline("the topology does not end where the grid's data start");
+    if (read_hook())
+        read_hook()(path, "topology");
 
     // Leaf values (LeafNode::readBuffers): found in order, then decompressed in parallel. The
-    // value mask stored again here is skipped, as OpenVDB does on a seekable stream.
+    // value mask stored again here is skipped, as OpenVDB does on a seekable stream. OpenVDB
+    // reads them from wherever the topology ended, not from the descriptor's block position:
+    // node masks that claim leaves the file does not hold (a flipped bit) shift every leaf
+    // after them, and the sizes read there are garbage. A chunk past the end of the file is an
+    // input error then (Cursor::chunk: OpenVDB would allocate it), the rest is declined below.
+    const size_t topology_end = in.pos();
     const size_t leaves = tree.leaves.size();
-    std::vector<size_t> values_at(leaves);
+    std::string& shifted = state.shifted_where;
+    shifted = tree.where + ": the node masks claim " + std::to_string(leaves) +
+              " leaves, whose topology ends at byte " + std::to_string(topology_end) +
+              ", not where the grid's data start (byte " + std::to_string(d->block) + ")";
+    if (topology_end != d->block)
+        in.set_where(&shifted);
+    state.values_at.resize(leaves);
     for (size_t i = 0; i < leaves; ++i) {
         in.take(sizeof(VoxelBlock::active));
-        values_at[i] = in.pos();
+        state.values_at[i] = in.pos();
         skip_values(in, tree.compression, VoxelBlock::kVoxels, tree.leaves[i].active.data());
         expand_by_leaf(tree, tree.leaves[i]);
         tree.active_voxels += count_on(tree.leaves[i].active.data(), 8);
     }
+    if (topology_end != d->block)
+        decline("the topology does not end where the grid's data start");
     if (in.pos() != d->end)
         decline("the leaves do not end where the grid does");
     loaded.active_voxels = tree.active_voxels;
     loaded.active_tiles = tree.active_tiles;
-    if (tree.active_voxels == 0) {
-        loaded.grid = std::make_shared<DensityGrid>();
-        return loaded;
-    }
+    return tree.active_voxels != 0;
+}
 
+/// The leaves' values, decompressed in parallel into state.values, each worker under the
+/// guard; false if the file was cut meanwhile.
+bool read_leaf_values(const MappedFile& file, const SigbusGuard& guard, ReadState& state) {
+    const Tree& tree = state.tree;
+    const size_t leaves = tree.leaves.size();
+    const size_t floats = leaves * VoxelBlock::kVoxels;
+    state.values.reset(new float[floats]);  // every float is written below
+    advise_huge_pages(state.values.get(), floats * sizeof(float));
+    std::atomic<bool> broken{false}, cut{false};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          float buffer[VoxelBlock::kVoxels];
+                          const bool whole = guard.run([&] {
+                              try {
+                                  for (size_t i = r.begin(); i != r.end(); ++i) {
+                                      Cursor c(file.data(), file.size(), state.values_at[i]);
+                                      c.set_where(&tree.where);
+                                      float* dest = state.values.get() + i * VoxelBlock::kVoxels;
+                                      read_values(c, tree.compression, dest, VoxelBlock::kVoxels,
+                                                  tree.leaves[i].active.data(), buffer);
+                                  }
+                              } catch (const Declined&) {
+                                  broken = true;
+                              }
+                          });
+                          if (!whole)
+                              cut = true;
+                      });
+    if (broken && !cut)
+        decline("a broken leaf");
+    return !cut;
+}
+
+[[noreturn]] void file_cut(const MappedFile& file, const std::string& path,
+                           const std::string& context) {
+    throw_input_error((context.empty() ? path : context + ": " + path) +
+                      ": the file was cut from " + std::to_string(file.size()) + " to " +
+                      std::to_string(file.size_now()) +
+                      " bytes while it was read (is another process writing it?)");
+}
+
+LoadedGrid read_grid(const std::string& path, const std::string& wanted,
+                     const std::string& context) {
+    const MappedFile file(path);
+    const SigbusGuard guard(file.data(), file.size());
+    ReadState state;
+    bool any = false;
+    if (!guard.run([&] { any = read_layout(file, path, wanted, context, state); }))
+        file_cut(file, path, context);
+    if (!any) {
+        state.loaded.grid = std::make_shared<DensityGrid>();
+        return std::move(state.loaded);
+    }
+    Tree& tree = state.tree;
     const glm::i64vec3 extent =
         glm::i64vec3(tree.box_max) - glm::i64vec3(tree.box_min) + glm::i64vec3(1);
     const glm::i64vec3 bricks =
@@ -560,36 +724,20 @@ LoadedGrid read_grid(const std::string& path, const std::string& wanted,
         throw_input_error(tree.where + ": the active voxels span " + std::to_string(extent.x) +
                           " x " + std::to_string(extent.y) + " x " + std::to_string(extent.z) +
                           " voxels, more than a grid may hold (2^24 per axis, 2^33 in all)");
-    const size_t floats = leaves * VoxelBlock::kVoxels;
-    std::unique_ptr<float[]> values(new float[floats]);  // every float is written below
-    advise_huge_pages(values.get(), floats * sizeof(float));
-    std::atomic<bool> broken{false};
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                          float buffer[VoxelBlock::kVoxels];
-                          try {
-                              for (size_t i = r.begin(); i != r.end(); ++i) {
-                                  Cursor c(file.data(), file.size(), values_at[i]);
-                                  c.set_where(&tree.where);
-                                  float* dest = values.get() + i * VoxelBlock::kVoxels;
-                                  read_values(c, tree.compression, dest, VoxelBlock::kVoxels,
-                                              tree.leaves[i].active.data(), buffer);
-                              }
-                          } catch (const Declined&) {
-                              broken = true;
-                          }
-                      });
-    if (broken)
-        decline("a broken leaf");
+    if (read_hook())
+        read_hook()(path, "values");
+    if (!read_leaf_values(file, guard, state))
+        file_cut(file, path, context);
+    const size_t leaves = tree.leaves.size();
     std::vector<VoxelBlock> blocks = std::move(tree.leaves);
     for (size_t i = 0; i < leaves; ++i)
-        blocks[i].values = values.get() + i * VoxelBlock::kVoxels;
+        blocks[i].values = state.values.get() + i * VoxelBlock::kVoxels;
     blocks.insert(blocks.end(), tree.tiles.begin(), tree.tiles.end());
     DensityGridBuild built = DensityGridBuilder::build(tree.box_min, tree.box_max, blocks);
     if (built.has_invalid)
         decline("an invalid voxel");  // OpenVDB's path names it
-    loaded.grid = std::move(built.grid);
-    return loaded;
+    state.loaded.grid = std::move(built.grid);
+    return std::move(state.loaded);
 }
 
 }  // namespace
@@ -605,6 +753,10 @@ std::optional<LoadedGrid> read_density_grid_direct(const std::string& path,
             *why_not = e.why;
         return std::nullopt;
     }
+}
+
+void set_direct_read_hook(std::function<void(const std::string& path, const char* stage)> hook) {
+    read_hook() = std::move(hook);
 }
 
 }  // namespace kasumi

@@ -27,6 +27,7 @@
 ///   them: blosc or zip as an int64 byte count (negative: raw bytes follow) and the bytes, or raw.
 #include "volume/vdb_io.h"
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -37,10 +38,20 @@ namespace kasumi {
 /// handles or is broken in any way. Throws Error (Input; message starting with `context`, then
 /// the path and grid) only for what no reader could load: a transform that is not finite,
 /// affine and invertible, active tiles over 2^30 voxels, active voxels spanning more than 2^24
-/// per axis or 2^26 bricks (2^35 voxels); OpenVDB's path would allocate until it fails there.
+/// per axis or 2^26 bricks (2^35 voxels), a value chunk past the end of the file (also where
+/// node masks that claim leaves the file lacks shift the leaves' values, read from where the
+/// topology ends as OpenVDB reads them); OpenVDB's path would allocate until it fails there.
+/// And a file cut while it is read (another process rewriting it): the mapping's pages past
+/// its new end raise SIGBUS, caught for the duration of the read.
 std::optional<LoadedGrid> read_density_grid_direct(const std::string& path,
                                                    const std::string& grid_name,
                                                    std::string* why_not = nullptr,
                                                    const std::string& context = std::string());
+
+/// For tests: `hook(path, stage)` runs inside every read while the file is mapped, at stage
+/// "topology" (the tree's topology is read) and "values" (the leaves' values are next), so a
+/// test can cut the file there as a concurrent writer might. Such a cut is an input error
+/// ("the file was cut ... while it was read"), not a crash. Empty: no hook.
+void set_direct_read_hook(std::function<void(const std::string& path, const char* stage)> hook);
 
 }  // namespace kasumi

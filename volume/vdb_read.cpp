@@ -7,9 +7,14 @@
 #include <openvdb/openvdb.h>
 
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <filesystem>
+#include <iostream>
 #include <mutex>
+
+#include <sys/mman.h>
+#include <unistd.h>
 
 namespace kasumi {
 
@@ -19,6 +24,89 @@ void initialize_openvdb() {
     static std::once_flag once;
     std::call_once(once, [] { openvdb::initialize(); });
 }
+
+/// OpenVDB logs through log4cplus to stdout (a WARN line, colour codes and all, for a file
+/// format newer than the library), and stdout carries `probe`'s and `plan --json`'s JSON.
+/// While one is alive, file descriptor 1 points at an anonymous memory file (or, failing that,
+/// at stderr); finish() points it back and returns what was written meanwhile, one message a
+/// line without the colour codes. One at a time in the process (a mutex).
+class StdoutCapture {
+  public:
+    StdoutCapture() : m_lock(mutex()) {
+        flush();
+        m_saved = ::dup(STDOUT_FILENO);
+        if (m_saved < 0)
+            return;  // no stdout to protect
+        m_file = ::memfd_create("kasumi-openvdb-log", MFD_CLOEXEC);
+        const int target = m_file >= 0 ? m_file : STDERR_FILENO;
+        if (::dup2(target, STDOUT_FILENO) < 0) {
+            ::close(m_saved);
+            m_saved = -1;
+        }
+    }
+    ~StdoutCapture() { finish(); }
+    StdoutCapture(const StdoutCapture&) = delete;
+    StdoutCapture& operator=(const StdoutCapture&) = delete;
+
+    std::string finish() {
+        std::string text;
+        if (m_saved >= 0) {
+            flush();
+            ::dup2(m_saved, STDOUT_FILENO);
+            ::close(m_saved);
+            m_saved = -1;
+        }
+        if (m_file >= 0) {
+            char buffer[4096];
+            ssize_t n = 0;
+            ::lseek(m_file, 0, SEEK_SET);
+            while ((n = ::read(m_file, buffer, sizeof(buffer))) > 0 && text.size() < 65536)
+                text.append(buffer, static_cast<size_t>(n));
+            ::close(m_file);
+            m_file = -1;
+        }
+        return plain(text);
+    }
+
+  private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    static void flush() {
+        std::cout.flush();
+        std::fflush(stdout);
+    }
+    /// Without ANSI escape sequences, lines joined by "; ", blanks trimmed.
+    static std::string plain(const std::string& text) {
+        std::string out, line;
+        auto end_line = [&] {
+            const size_t a = line.find_first_not_of(" \t\r");
+            if (a != std::string::npos) {
+                const size_t b = line.find_last_not_of(" \t\r");
+                out += (out.empty() ? "" : "; ") + line.substr(a, b - a + 1);
+            }
+            line.clear();
+        };
+        for (size_t i = 0; i < text.size(); ++i) {
+            if (text[i] == '\x1b' && i + 1 < text.size() && text[i + 1] == '[') {
+                i += 2;
+                while (i < text.size() && !(text[i] >= '@' && text[i] <= '~'))
+                    ++i;
+            } else if (text[i] == '\n') {
+                end_line();
+            } else {
+                line += text[i];
+            }
+        }
+        end_line();
+        return out;
+    }
+
+    std::unique_lock<std::mutex> m_lock;
+    int m_saved = -1;
+    int m_file = -1;
+};
 
 std::string coord_text(const openvdb::Coord& c) {
     return "(" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " +
@@ -66,13 +154,30 @@ LoadedGrid load_density_grid(const std::string& path, const std::string& grid_na
     if (!std::filesystem::is_regular_file(path))
         throw_input_error(context + ": no such file: " + path);
     check_vdb_header(path, context);  // OpenVDB trusts the header's lengths and counts
-    initialize_openvdb();
     openvdb::FloatGrid::Ptr grid;
-    try {
-        grid = read_float_grid(path, grid_name, context);
-    } catch (const openvdb::Exception& e) {
-        throw_input_error(context + ": " + path + ": " + e.what());
+    std::string log;
+    {
+        // OpenVDB's log lines go to stderr: as a warning when it reads the file, inside the
+        // one-line error when it does not.
+        StdoutCapture capture;
+        try {
+            initialize_openvdb();
+            grid = read_float_grid(path, grid_name, context);
+        } catch (const openvdb::Exception& e) {
+            log = capture.finish();
+            throw_input_error(context + ": " + path + ": " + e.what() +
+                              (log.empty() ? "" : " (OpenVDB: " + log + ")"));
+        } catch (const Error& e) {
+            log = capture.finish();
+            if (log.empty())
+                throw;
+            throw Error(e.kind(), std::string(e.what()) + " (OpenVDB: " + log + ")");
+        }
+        log = capture.finish();
     }
+    if (!log.empty())
+        std::fprintf(stderr, "kasumi: warning: %s: %s: OpenVDB: %s\n", context.c_str(),
+                     path.c_str(), log.c_str());
     const std::string where = context + ": " + path + " grid \"" + grid->getName() + "\"";
     if (!grid->transform().isLinear())
         throw_input_error(where + ": only linear (affine) transforms are supported");

@@ -7,11 +7,11 @@
 # internal error; a mutant that checks must also give a finite radiance probe. Without STRIDE a
 # fixed set of mutants (about 10 runs; ctest); `vdb_fuzz_cli_test.sh KASUMI SRC STRIDE` sweeps
 # every STRIDE-th offset (STRIDE 97: 422 runs, 13 min wall at load 6-9) for a long local run.
-# Open (found by the sweep, not fixed; left out of the fixed set): with `make-cloud --res 8
-# --seed 5`, bytes 00 00 00 80 written at 8970, 9165 or 9360 (inside internal-node masks and
-# values, where the direct reader declines) make OpenVDB's fallback run out of memory (exit 1);
-# byte 8 = 0xff (file format 255) makes OpenVDB print a WARN line on stdout, breaking probe's
-# JSON. Both are in the OpenVDB path (volume/vdb_read.cpp), not the direct reader.
+# The fixed set holds what the sweep found: with `make-cloud --res 8 --seed 5`, bytes 00 00 00
+# 80 written at 8970, 9165 or 9360 set a bit of a 4-level node's child mask, and OpenVDB's
+# fallback, reading every leaf's values 64 bytes late, allocated a garbage chunk size (out of
+# memory, exit 1; now the direct reader refuses the file, exit 3); byte 8 = 0xff (file format
+# 255) made OpenVDB print a WARN line on stdout, breaking probe's JSON (now on stderr).
 # usage: vdb_fuzz_cli_test.sh KASUMI_BINARY SOURCE_DIR [STRIDE]
 set -u
 kasumi="$1"
@@ -82,9 +82,13 @@ if [ "$stride" -eq 0 ]; then
     head -c "$cut" "$work/c8.vdb" >"$work/m.vdb"
     run_mutant "cut at $cut"
   done
-  for at in 300 5000; do
+  for at in 8 300 5000; do
     put "$at" '\xff'
     run_mutant "byte $at = 0xff"
+  done
+  for at in 8970 9165 9360; do
+    put "$at" '\x00\x00\x00\x80'
+    run_mutant "int32 -2^31 at $at"
   done
   stride=$((size + 1))  # no sweep
 fi

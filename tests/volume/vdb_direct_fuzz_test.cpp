@@ -1,16 +1,16 @@
 // Hostile and damaged .vdb files against the direct reader (volume/vdb_direct.h): small grids
-// written by OpenVDB with each compression (blosc, zip, none; with and without the active
-// mask; one with active tiles), then deterministic mutations of their bytes: the file cut at
-// many lengths, single bytes set to 0x00, 0xFF or flipped in their top bit, and int32/int64
-// windows overwritten with huge, negative and extreme counts at every offset. Each mutant must
-// be read or declined (std::nullopt), or refused with kasumi::Error (Input) for what no reader
-// could load; nothing else may escape, a grid read from a mutant must be finite and its
-// transform invertible. The allocation bound is enforced by the address-space limit below
-// (Release; under ASan run with
-// ASAN_OPTIONS=max_allocation_size_mb=1024:allocator_may_return_null=1): a request beyond it throws
-// std::bad_alloc, which fails the test. Deterministic (no random draws in the fixed set), so no
-// false failures. $KASUMI_VDB_FUZZ_SEEDS=N adds N random multi-byte mutants per fixture (for
-// long local runs under ASan; not used by ctest).
+// written by OpenVDB with each compression (blosc, none; with and without the active mask;
+// OpenVDB writes the "zip" fixtures of a fog volume without zip), one with active tiles, then
+// deterministic mutations of their bytes: the file cut at many lengths, single bytes set to 0x00,
+// 0xFF or flipped in their top bit, and int32/int64 windows overwritten with huge, negative and
+// extreme counts at every offset. Each mutant must be read or declined (std::nullopt), or refused
+// with kasumi::Error (Input) for what no reader could load; nothing else may escape, a grid read
+// from a mutant must be finite and its transform invertible. The allocation bound is enforced by
+// the address-space limit below in Release (a request beyond it throws std::bad_alloc, which fails
+// the test); under ASan (the asan preset runs this file: label unit) by ASan, which aborts on a
+// request over its maximum (ASAN_OPTIONS=max_allocation_size_mb=1024 tightens it). Deterministic
+// (no random draws in the fixed set), so no false failures. $KASUMI_VDB_FUZZ_SEEDS=N adds N random
+// multi-byte mutants per fixture (for long local runs under ASan; not used by ctest).
 #include "volume/vdb_direct.h"
 
 #include "core/error.h"
@@ -22,6 +22,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -119,10 +120,31 @@ const std::vector<Fixture>& fixtures() {
     return all;
 }
 
+/// Makes the file at `path` hold `bytes`, given that it holds `*held`: a mutant of the same
+/// length rewrites only the bytes between its first and last change (most of the test's time
+/// under ASan went to rewriting whole files).
+void update_bytes(const std::string& path, const Bytes& bytes, Bytes* held) {
+    if (held->size() != bytes.size()) {
+        write_bytes(path, bytes);
+    } else {
+        const auto first = std::mismatch(bytes.begin(), bytes.end(), held->begin()).first;
+        if (first != bytes.end()) {
+            const auto last = std::mismatch(bytes.rbegin(), bytes.rend(), held->rbegin()).first;
+            const auto begin = static_cast<std::streamoff>(first - bytes.begin());
+            const auto end = static_cast<std::streamoff>(bytes.rend() - last);
+            std::fstream out(path, std::ios::binary | std::ios::in | std::ios::out);
+            out.seekp(begin);
+            out.write(reinterpret_cast<const char*>(bytes.data()) + begin, end - begin);
+        }
+    }
+    *held = bytes;
+}
+
 /// Reads one mutant; returns a failure description, or "" when it behaved.
 std::string try_mutant(const Bytes& bytes, const std::string& what) {
     static const std::string path = test::temp_grid_path("fuzz_mutant");
-    write_bytes(path, bytes);
+    static Bytes held;
+    update_bytes(path, bytes, &held);
     try {
         std::string why;
         const std::optional<LoadedGrid> g = read_density_grid_direct(path, "", &why, "fuzz");
@@ -184,7 +206,7 @@ int check_all(const Fixture& f, const std::vector<std::pair<std::string, Bytes>>
 
 TEST(VdbDirectFuzz, FixturesReadUnmutated) {
     for (const Fixture& f : fixtures()) {
-        static const std::string path = test::temp_grid_path("fuzz_mutant");
+        const std::string path = test::temp_grid_path("fuzz_unmutated");
         write_bytes(path, f.bytes);
         std::string why;
         const std::optional<LoadedGrid> g = read_density_grid_direct(path, "", &why);
@@ -241,6 +263,53 @@ TEST(VdbDirectFuzz, HugeCounts) {
             }
         }
         EXPECT_EQ(check_all(f, mutants), 0) << f.name;
+    }
+}
+
+TEST(VdbDirectFuzz, NodeMasksClaimingALeafTheFileLacksAreAnInputError) {
+    // One active voxel, blosc (OpenVDB writes fog volumes without zip): a root child, a 5-level and
+    // a 4-level internal node, one leaf. A bit set in the 4-level node's child mask claims a second
+    // leaf: OpenVDB's reader then takes the leaf's stored mask as that leaf's topology and reads
+    // every value chunk 64 bytes late, its sizes garbage that it allocates (out of memory, exit 1,
+    // through the CLI). The direct reader reads on as OpenVDB would and refuses the first chunk
+    // past the file's end.
+    DenseVoxels v;
+    v.dims = IVec3(1);
+    v.values = {0.5f};
+    v.compression = 4;
+    const std::string path = test::temp_grid_path("fuzz_one_leaf");
+    write_fog_volume(path, "density", v, 1.0, Vec3(0.0f));
+    Bytes b = read_bytes(path);
+    // The root: background 0, no tiles, one child at (0, 0, 0), then the 5-level node's child
+    // mask holding child 0 only.
+    const uint8_t root[25] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0,
+                              0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+    const auto at = std::search(b.begin(), b.end(), std::begin(root), std::end(root));
+    ASSERT_NE(at, b.end());
+    const size_t node5 = static_cast<size_t>(at - b.begin()) + 24;
+    const size_t values5 = node5 + 2 * 4096;  // child and value masks of 32768 bits
+    ASSERT_LT(values5 + 9, b.size());
+    // Mask-compression code 0 or 6: no inactive values, no selection mask; then the chunk.
+    ASSERT_TRUE(b[values5] == 0 || b[values5] == 6) << int(b[values5]);
+    int64_t packed = 0;
+    std::memcpy(&packed, &b[values5 + 1], sizeof(packed));
+    ASSERT_GT(packed, 0);
+    const size_t node4 = values5 + 9 + static_cast<size_t>(packed);
+    ASSERT_LT(node4, b.size());
+    ASSERT_EQ(b[node4], 1);  // the 4-level node's child mask: leaf 0
+    b[node4] = 3;
+    write_bytes(path, b);
+    try {
+        std::string why;
+        read_density_grid_direct(path, "", &why, "fuzz");
+        ADD_FAILURE() << "read or declined (" << why << "): OpenVDB's path would allocate";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Input);
+        EXPECT_NE(std::string(e.what()).find("fuzz: " + path +
+                                             " grid \"density\": the node "
+                                             "masks claim 2 leaves, whose topology ends at byte"),
+                  std::string::npos)
+            << e.what();
     }
 }
 

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -228,6 +229,43 @@ TEST(VdbDirectRead, DeclinesBrokenFilesAndLeavesTheErrorToOpenVdb) {
         }
     }
     EXPECT_FALSE(read_density_grid_direct(test::temp_grid_path("no_such_file"), ""));
+}
+
+TEST(VdbDirectRead, AFileCutWhileItIsReadIsAnInputError) {
+    // Another process rewriting the .vdb cuts it while it is mapped: the pages past its new end
+    // raise SIGBUS, which killed the renderer. The read hook cuts the file to nothing after the
+    // topology is read (the sequential leaf walk faults next) and before the leaves' values are
+    // decompressed (the parallel workers fault), for each compression.
+    for (int compression : {0, 2, -1}) {
+        for (const char* stage : {"topology", "values"}) {
+            DenseVoxels v = random_voxels(3, IVec3(-20), IVec3(40));
+            v.compression = compression;
+            const std::string path = test::temp_grid_path("direct_cut_while_read");
+            write_fog_volume(path, "density", v, 1.0, Vec3(0.0f));
+            ASSERT_TRUE(read_density_grid_direct(path, ""));
+            int cuts = 0;
+            set_direct_read_hook([&](const std::string& read, const char* at) {
+                if (read == path && std::string(at) == stage) {
+                    std::filesystem::resize_file(path, 0);
+                    ++cuts;
+                }
+            });
+            const uintmax_t size = std::filesystem::file_size(path);
+            try {
+                read_density_grid_direct(path, "", nullptr, "scene.json: /media/0/file");
+                ADD_FAILURE() << stage << ": a file cut while it was read loaded";
+            } catch (const Error& e) {
+                EXPECT_EQ(e.kind(), ErrorKind::Input);
+                EXPECT_EQ(std::string(e.what()),
+                          "scene.json: /media/0/file: " + path + ": the file was cut from " +
+                              std::to_string(size) +
+                              " to 0 bytes while it was read (is another process writing it?)")
+                    << stage << ", compression " << compression;
+            }
+            set_direct_read_hook(nullptr);
+            EXPECT_EQ(cuts, 1) << stage;
+        }
+    }
 }
 
 }  // namespace
