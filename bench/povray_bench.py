@@ -377,6 +377,8 @@ def run_case(args, case):
               if r["ours_over_theirs"] is not None and r["pareto"]]
     bounds = [r["ours_over_theirs_bound"] for r in rows if "ours_over_theirs_bound" in r]
     every_bound = [r["bound"] for r in rows if "bound" in r]
+    # The same over POV-Ray's Pareto points: the settings a POV-Ray user would pick.
+    pareto_bound = [r["bound"] for r in rows if "bound" in r and r["pareto"]]
     summary = {"case": case, "residual": res,
                "median_ratio": statistics.median(ratios) if ratios else None,
                "min_ratio": min(ratios) if ratios else None,
@@ -388,6 +390,10 @@ def run_case(args, case):
                "bound_min": min(every_bound) if every_bound else None,
                "bound_max": max(every_bound) if every_bound else None,
                "n_bounds": len(every_bound),
+               "pareto_bound_median": statistics.median(pareto_bound) if pareto_bound else None,
+               "pareto_bound_min": min(pareto_bound) if pareto_bound else None,
+               "pareto_bound_max": max(pareto_bound) if pareto_bound else None,
+               "n_pareto_bounds": len(pareto_bound),
                "n_pov": len(pov_pts)}
     return rows, summary
 
@@ -481,7 +487,10 @@ def main():
                  "%s (%d)" % (fmt(s["median_all"]), s["n_all"]),
                  "%s (%s-%s, %d of %d POV points)" % (fmt(s["bound_median"]),
                                                        fmt(s["bound_min"]), fmt(s["bound_max"]),
-                                                       s["n_bounds"], s["n_pov"]),
+                                                       s["n_bounds"], s["n_pov"]) +
+                 "; POV's Pareto points: %s (%s-%s, %d)" % (
+                     fmt(s["pareto_bound_median"]), fmt(s["pareto_bound_min"]),
+                     fmt(s["pareto_bound_max"]), s["n_pareto_bounds"]),
                  "%.2f%%" % (100 * s["residual"]["rel_rmse"]),
                  "%.4f" % s["residual"]["scale"],
                  "%.2f%%" % (100 * s["residual"]["rel_rmse_after_scale"])] for s in summaries]
