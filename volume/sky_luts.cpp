@@ -368,30 +368,60 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
         // (The coefficients of the middle alone, as before, made that layer's depth 2.8% too
         // small, by the factor (L/2H) / sinh(L/2H); tests/volume/published_atmosphere_test.cpp.)
         const double length = t_end - t_enter;
-        std::array<Bands, 3> source{}, sigma_t{};
+        // Densities of the three species at the ends and the middle (no band arrays: this
+        // runs per pixel).
+        std::array<DVec3, 3> x;
+        std::array<double, 3> r{}, d_r{}, d_m{}, d_o{};
         for (int k = 0; k < 3; ++k) {
-            const DVec3 x = p + (t_enter + 0.5 * k * length) * d;
-            const DVec3 up_vec = x - a.center();
-            const double r = glm::length(up_vec);
-            const AtmosphereCoefficients c = atmosphere_coefficients(a, r - m_rg);
-            sun_transmittance(sky, x, ts);
-            multiple_scattering(r, glm::dot(up_vec / r, sky.sun_direction), ms);
-            for (int i = 0; i < n; ++i) {
-                source[k][i] = (c.sigma_s_rayleigh[i] * p_r + c.sigma_s_mie[i] * p_m) * ts[i] +
-                               (c.sigma_s_rayleigh[i] + c.sigma_s_mie[i]) * ms[i];
-                sigma_t[k][i] = c.sigma_t[i];
+            x[k] = p + (t_enter + 0.5 * k * length) * d;
+            r[k] = glm::length(x[k] - a.center());
+            const double h = r[k] - m_rg;
+            d_r[k] = a.rayleigh.profile.density(h);
+            d_m[k] = a.mie.profile.density(h);
+            d_o[k] = a.ozone.profile.density(h);
+        }
+        const auto sigma_t = [&](int k, int i) {
+            return d_r[k] * (a.rayleigh.scattering[i] + a.rayleigh.absorption[i]) +
+                   d_m[k] * (a.mie.scattering[i] + a.mie.absorption[i]) +
+                   d_o[k] * (a.ozone.scattering[i] + a.ozone.absorption[i]);
+        };
+        // The sun's and the multiple-scattering light are looked up at the ends too only where
+        // the air changes along the segment: if its extinction differs by over 1.55% from end
+        // to end (an exponential layer: altitude change > H / 64, 19 m for the aerosol).
+        // Otherwise their change is as small and the middle's light serves the three nodes
+        // (a third of the table lookups; near-horizontal segments over a scene).
+        bool uniform = true;
+        for (int i = 0; i < n; ++i)
+            uniform = uniform && std::abs(sigma_t(2, i) - sigma_t(0, i)) <= 0.0155 * sigma_t(1, i);
+        Bands ts_end[2], ms_end[2];
+        sun_transmittance(sky, x[1], ts);
+        multiple_scattering(r[1], glm::dot(x[1] - a.center(), sky.sun_direction) / r[1], ms);
+        if (!uniform) {
+            for (int e = 0; e < 2; ++e) {
+                const int k = 2 * e;
+                sun_transmittance(sky, x[k], ts_end[e]);
+                multiple_scattering(r[k], glm::dot(x[k] - a.center(), sky.sun_direction) / r[k],
+                                    ms_end[e]);
             }
         }
         for (int i = 0; i < n; ++i) {
-            const double s0 = sigma_t[0][i], sm = sigma_t[1][i], s1 = sigma_t[2][i];
+            double source[3];
+            for (int k = 0; k < 3; ++k) {
+                const bool middle_light = k == 1 || uniform;
+                const double t_sun = middle_light ? ts[i] : ts_end[k / 2][i];
+                const double multiple = middle_light ? ms[i] : ms_end[k / 2][i];
+                const double s_r = d_r[k] * a.rayleigh.scattering[i];
+                const double s_m = d_m[k] * a.mie.scattering[i];
+                source[k] = (s_r * p_r + s_m * p_m) * t_sun + (s_r + s_m) * multiple;
+            }
+            const double s0 = sigma_t(0, i), sm = sigma_t(1, i), s1 = sigma_t(2, i);
             const double tau_i = length * (s0 + 4.0 * sm + s1) / 6.0;
             // Depth to the middle: the integral of the parabola through the three nodes over
             // the first half.
             const double tau_mid = std::max(0.0, length * (5.0 * s0 + 8.0 * sm - s1) / 24.0);
             const double w_mid = 4.0 * std::exp(-tau_mid), w_end = std::exp(-tau_i);
             const double mean_source =
-                (source[0][i] + w_mid * source[1][i] + w_end * source[2][i]) /
-                (1.0 + w_mid + w_end);
+                (source[0] + w_mid * source[1] + w_end * source[2]) / (1.0 + w_mid + w_end);
             // (1 - e^-tau) L / tau, written with expm1 and its limit `length` as tau -> 0.
             const double path = tau_i > 1e-12 ? -std::expm1(-tau_i) * length / tau_i : length;
             radiance[i] = path * mean_source;
