@@ -52,16 +52,34 @@ class DensityGrid {
     /// Trilinear density at an index-space point; 0 outside the stored region. Never throws.
     float density(const Vec3& p_index) const {
         const Vec3 q = p_index - m_origin_f;
-        const Vec3 qf = glm::floor(q);
-        if (!(qf.x >= 0.0f && qf.y >= 0.0f && qf.z >= 0.0f && qf.x < m_cells_f.x &&
-              qf.y < m_cells_f.y && qf.z < m_cells_f.z))
+        // floor(q) >= 0 iff q >= 0, and floor(q) < n iff q < n for an integer n; in that range
+        // the integer conversion (truncation) is the floor, without a rounding-mode dance.
+        if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < m_cells_f.x && q.y < m_cells_f.y &&
+              q.z < m_cells_f.z))
             return 0.0f;
-        const IVec3 c(qf);
+        const IVec3 c(q);
         const int32_t brick = m_brick_index[brick_slot(c >> 3)];
         if (brick < 0)
             return 0.0f;
         return trilinear(&m_voxels[static_cast<size_t>(brick) * kBrickVoxels], c & (kBrick - 1),
-                         q - qf);
+                         q - Vec3(c));
+    }
+
+    /// Asks the processor to start loading the voxels a lookup at p_index will read (the brick
+    /// table entry is read now): a march calls it a node or two ahead so the lookup finds them
+    /// in cache. Reads nothing else and changes nothing; no effect where nothing is stored.
+    void prefetch(const Vec3& p_index) const {
+        const Vec3 q = p_index - m_origin_f;
+        if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < m_cells_f.x && q.y < m_cells_f.y &&
+              q.z < m_cells_f.z))
+            return;
+        const IVec3 c(q);
+        const int32_t brick = m_brick_index[brick_slot(c >> 3)];
+        if (brick < 0)
+            return;
+        const IVec3 l = c & (kBrick - 1);
+        prefetch_cell(&m_voxels[static_cast<size_t>(brick) * kBrickVoxels] +
+                      (l.x + kStored * (l.y + kStored * l.z)));
     }
 
     /// Trilinear density at an index-space point known to lie in brick `b` (the brick a walk
@@ -69,8 +87,9 @@ class DensityGrid {
     /// the value always lies within the brick's bounds. Never throws.
     static float density_in(const BrickRef& b, const Vec3& p_index) {
         const Vec3 q = glm::clamp(p_index - b.lower, Vec3(0.0f), Vec3(static_cast<float>(kBrick)));
-        const Vec3 qf = glm::min(glm::floor(q), Vec3(static_cast<float>(kBrick - 1)));
-        return trilinear(b.voxels, IVec3(qf), q - qf);
+        // q >= 0 after the clamp, where truncation to int is the floor.
+        const IVec3 l = glm::min(IVec3(q), IVec3(kBrick - 1));
+        return trilinear(b.voxels, l, q - Vec3(l));
     }
 
     /// Walks the index-space ray o + t d, t in [t0, t1], in order through the non-empty bricks
@@ -97,6 +116,21 @@ class DensityGrid {
 
   private:
     friend class DensityGridBuilder;  // volume/density_grid_build.h: parallel construction
+
+    /// Prefetches the cache lines of the trilinear cell whose voxel (0, 0, 0) is at v: its four
+    /// x-rows (two voxels each) at +0, +dy, +dz and +dy+dz.
+    static void prefetch_cell(const float* v) {
+#if defined(__GNUC__) || defined(__clang__)
+        constexpr int dy = kStored, dz = kStored * kStored;
+        __builtin_prefetch(v);
+        __builtin_prefetch(v + dy + 1);
+        __builtin_prefetch(v + dz);
+        __builtin_prefetch(v + dz + dy + 1);
+#else
+        (void)v;
+#endif
+    }
+    // volume/density_grid_build.h: parallel construction
 
     /// Trilinear interpolation in the cell at local index l of a brick's 9³ voxels, fractions f.
     static float trilinear(const float* brick, IVec3 l, Vec3 f) {

@@ -1,5 +1,6 @@
 #include "volume/light_cache.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -21,7 +22,11 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
            static_cast<float>(kMaxPoints))
         m_cell *= 2.0f;
     m_dims = IVec3(glm::ceil(extent / m_cell)) + IVec3(1);
-    m_d.resize(static_cast<size_t>(m_dims.x) * m_dims.y * m_dims.z);  // zeroed pages, no fill
+    // Zeroed pages, no fill; at least 2 MiB reserved, so the allocator maps them as one
+    // transparent huge page (one page fault instead of one per 4 KiB as the sweep writes them).
+    const size_t points = static_cast<size_t>(m_dims.x) * m_dims.y * m_dims.z;
+    m_d.reserve(std::max(points, decltype(m_d)::allocator_type::kHugePage / sizeof(float)));
+    m_d.resize(points);
 
     // One lattice step toward the light along the major axis a of the index-space direction.
     const Vec3 d_index(m_world_to_index * Vec4(toward_light, 0.0f));
@@ -65,14 +70,18 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
     const std::vector<Axis> along_b = axis_table(b), along_c = axis_table(c);
     const size_t stride[3] = {1, static_cast<size_t>(m_dims.x),
                               static_cast<size_t>(m_dims.x) * static_cast<size_t>(m_dims.y)};
+    // Within a slice every point reads only the upstream slice, so the order of the two inner
+    // loops is free: the innermost runs along the lower axis (x before y before z), the one
+    // along which both this lattice and the grid's bricks (numbered x fastest) are contiguous.
+    const int inner = std::min(b, c), outer = std::max(b, c);
     for (int slice = first; slice >= 0 && slice < m_dims[a]; slice -= toward) {
         const int upstream = slice + toward;
         const bool inside = upstream >= 0 && upstream < m_dims[a];
         IVec3 p;
         p[a] = slice;
-        for (p[c] = 0; p[c] < m_dims[c]; ++p[c]) {
-            const Axis& ev = along_c[static_cast<size_t>(p[c])];
-            for (p[b] = 0; p[b] < m_dims[b]; ++p[b]) {
+        for (p[outer] = 0; p[outer] < m_dims[outer]; ++p[outer]) {
+            for (p[inner] = 0; p[inner] < m_dims[inner]; ++p[inner]) {
+                const Axis& ev = along_c[static_cast<size_t>(p[c])];
                 const Vec3 x = m_lower + m_cell * Vec3(p);
                 const Vec3 q = x + step;
                 const float rho_p = grid.density(x);

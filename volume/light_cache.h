@@ -71,12 +71,13 @@ class LightTransmittanceCache {
   private:
     std::optional<Rgb> at_lattice(const Vec3& u) const;
     bool lattice_integral(const Vec3& u, float& d) const {
-        const Vec3 f = glm::floor(u);
-        if (!(f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f && f.x < m_dims.x - 1 &&
-              f.y < m_dims.y - 1 && f.z < m_dims.z - 1))
+        // floor(u) >= 0 iff u >= 0 and floor(u) < n iff u < n (n an integer); in that range
+        // the conversion to int (truncation) is the floor.
+        if (!(u.x >= 0.0f && u.y >= 0.0f && u.z >= 0.0f && u.x < m_dims.x - 1 &&
+              u.y < m_dims.y - 1 && u.z < m_dims.z - 1))
             return false;
-        const IVec3 i(f);
-        const Vec3 w = u - f;
+        const IVec3 i(u);
+        const Vec3 w = u - Vec3(i);
         const size_t dy = static_cast<size_t>(m_dims.x), dz = dy * static_cast<size_t>(m_dims.y);
         const float* v = &m_d[index(i.x, i.y, i.z)];
         const float x00 = v[0] + w.x * (v[1] - v[0]);

@@ -113,6 +113,10 @@ struct MarchLight {
     LightTransmittanceCache::Line line;
 };
 
+/// How many march nodes ahead march_single_grid prefetches the grid's voxels: the work of one
+/// node (~50 ns) is less than a load from memory (4 nodes ahead measured the same as 2).
+constexpr float kPrefetchNodes = 2.0f;
+
 /// The camera optical depth at which the marched single scattering stops (kTailTransmittance).
 const float kTailDepth = -std::log(kTailTransmittance);
 
@@ -132,10 +136,14 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
     if (g == nullptr || !settings.light_cache || !media.grey_extinction() || media.emits() ||
         lights.empty() || lights.size() > MediumSet::kMaxCachedLights)
         return false;
-    for (size_t i = 0; i < lights.size(); ++i)
-        if (!std::holds_alternative<DirectionalLight>(lights[i].emitter) ||
-            media.light_cache(i, lights[i]) == nullptr)
+    const LightTransmittanceCache* caches[MediumSet::kMaxCachedLights];
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (!std::holds_alternative<DirectionalLight>(lights[i].emitter))
             return false;
+        caches[i] = media.light_cache(i, lights[i]);
+        if (caches[i] == nullptr)
+            return false;
+    }
     result = VolumeResult{};
     const float sigma_t = g->sigma_t.r;  // per unit density, equal channels (grey)
     if (g->grid->empty() || !(sigma_t > 0.0f))
@@ -167,7 +175,7 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
             continue;  // the general path's light_term returns 0 before any shadow test
         m.light = &lights[i];
         m.weight = m.f * m.incident.irradiance;
-        m.cache = media.light_cache(i, lights[i]);
+        m.cache = caches[i];
         m.line = m.cache->line(ray.origin, ray.direction);
         m.blockable = occlusion != nullptr && lights[i].shadows != ShadowMode::None;
         ++n_lights;
@@ -190,6 +198,7 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
         depth +=
             0.5 * static_cast<double>(run_end - t_prev) * static_cast<double>(rho_prev + rho_end);
     };
+    const DensityGrid& grid = *g->grid;
     g->grid->walk(o, d, span->first, span->second, [&](const BrickSpan& b, const BrickRef& brick) {
         if (!started) {
             u = rng.next_float();  // drawn where the general path draws it: media ahead
@@ -212,6 +221,11 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
                 break;
             if (!(t > t_prev))
                 continue;
+            // The nodes are a few voxels apart, mostly in another brick each: start loading the
+            // voxels of the node kPrefetchNodes ahead while this one is lit (values unchanged).
+            // The light cache's lattice (~1 MB) stays in cache: prefetching it gained nothing.
+            const float t_ahead = t + kPrefetchNodes * h;
+            grid.prefetch(o + t_ahead * d);
             const float rho = DensityGrid::density_in(brick, o + t * d);
             ++lookups;
             depth += 0.5 * static_cast<double>(t - t_prev) * static_cast<double>(rho_prev + rho);
