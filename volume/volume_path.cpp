@@ -5,7 +5,9 @@
 #include "volume/transmittance.h"
 
 #include <cmath>
+#include <new>
 #include <optional>
+#include <type_traits>
 
 namespace kasumi {
 
@@ -162,11 +164,19 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
         LightTransmittanceCache::Line line;
         bool blockable = false;
     };
-    GridLight grid_lights[MediumSet::kMaxCachedLights];
+    // Constructed only as lights are taken: a zeroed array of all eight cost more per ray than
+    // the setup of the one light a cloud usually has (callgrind: 135 instructions per ray;
+    // std::optional per element saved only a quarter of them).
+    static_assert(std::is_trivially_destructible<GridLight>::value, "no destructor to run");
+    union GridLights {
+        GridLights() {}  // constructs no element
+        GridLight at[MediumSet::kMaxCachedLights];
+    } storage;
+    GridLight* const grid_lights = storage.at;
     size_t n_lights = 0;
     const Vec3 wo = -ray.direction;
     for (size_t i = 0; i < lights.size(); ++i) {
-        GridLight& m = grid_lights[n_lights];
+        GridLight& m = *new (&grid_lights[n_lights]) GridLight;
         m.incident = sample_incident(lights[i], ray.origin, rng);
         if (is_black(m.incident.irradiance))
             continue;
