@@ -285,12 +285,12 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
 }
 
 PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
-                             RenderCounters& counters) {
+                             RenderCounters& counters, const std::optional<SurfaceHit>* first_hit) {
     ++counters.camera_rays;
     PixelSample sample;
     float t_end = ray.t_max;
     if (const SurfaceScene* surfaces = scene.surfaces()) {
-        if (const auto hit = surfaces->intersect(ray)) {
+        if (const auto hit = first_hit != nullptr ? *first_hit : surfaces->intersect(ray)) {
             ++counters.surface_hits;
             sample.hit = true;
             t_end = hit->t;

@@ -9,9 +9,11 @@
 namespace kasumi {
 
 /// Radiance (cd/m²) and AOVs seen along `ray` (a camera ray). Never throws; a non-finite result
-/// is returned as is for the caller to count.
+/// is returned as is for the caller to count. `first_hit`, when given, is the ray's closest
+/// surface hit already traced (SurfaceScene::intersect_coherent for a row of pixels).
 PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
-                             RenderCounters& counters);
+                             RenderCounters& counters,
+                             const std::optional<SurfaceHit>* first_hit = nullptr);
 
 /// The volume stage over one ray segment [segment.t_min, segment.t_max) (t_max: the first
 /// surface, or kInfinity): transmittance and in-scattered radiance, for camera rays and for

@@ -9,6 +9,8 @@
 
 #include <chrono>
 #include <mutex>
+#include <optional>
+#include <vector>
 
 namespace kasumi {
 
@@ -21,8 +23,16 @@ bool is_finite_sample(const PixelSample& s) {
 
 }  // namespace
 
-PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame,
-                                RenderCounters& counters) {
+namespace {
+
+/// The camera ray of sample `sample` of pixel (x, y) and the generator that continues it: both
+/// come from the key (pixel, sample, frame, seed).
+struct CameraSample {
+    Ray ray;
+    Pcg32 rng;
+};
+
+CameraSample camera_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame) {
     Pcg32 rng = pixel_rng(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
                           static_cast<uint32_t>(sample), frame, scene.desc().render.seed);
     Vec2 jitter = rng.next_vec2();
@@ -30,7 +40,15 @@ PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sam
         jitter = Vec2(0.5f);
     const Ray ray = scene.camera().generate_ray(static_cast<float>(x) + jitter.x,
                                                 static_cast<float>(y) + jitter.y);
-    return trace_camera_ray(scene, ray, rng, counters);
+    return {ray, rng};
+}
+
+}  // namespace
+
+PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame,
+                                RenderCounters& counters) {
+    CameraSample c = camera_sample(scene, x, y, sample, frame);
+    return trace_camera_ray(scene, c.ray, c.rng, counters);
 }
 
 RenderResult render_image(const SceneRuntime& scene, const RenderOptions& options) {
@@ -59,38 +77,67 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
         if (cancelled())
             return;
         const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
+        const int x1 = std::min(x0 + tile, width);
+        const size_t row = static_cast<size_t>(x1 - x0);
         RenderCounters local;
+        // A tile's row is traced one sample index at a time: its camera rays (neighbouring
+        // pixels) go through the BVH together (SurfaceScene::intersect_coherent), then each is
+        // shaded with its own generator. Every pixel gets the samples, generators and sums it
+        // got one pixel at a time (same images, bit for bit).
+        const SurfaceScene* surfaces = scene.surfaces();
+        std::vector<PixelSample> sums(row);
+        std::vector<int> hits(row);
+        std::vector<float> depth_sums(row);
+        std::vector<CameraSample> samples;
+        samples.reserve(row);
+        std::vector<Ray> rays(row);
+        std::vector<std::optional<SurfaceHit>> first_hits(row);
         for (int y = y0; y < std::min(y0 + tile, height) && !stopped; ++y) {
-            for (int x = x0; x < std::min(x0 + tile, width); ++x) {
-                PixelSample sum;
-                sum.transmittance = Rgb(0.0f);
-                int hits = 0;
-                float depth_sum = 0.0f;
-                bool complete = true;
-                for (int s = 0; s < spp; ++s) {
-                    if (cancelled()) {
-                        complete = false;
-                        break;
-                    }
-                    const PixelSample p = render_pixel_sample(scene, x, y, s, options.frame, local);
+            for (size_t i = 0; i < row; ++i) {
+                sums[i] = PixelSample{};
+                sums[i].transmittance = Rgb(0.0f);
+                hits[i] = 0;
+                depth_sums[i] = 0.0f;
+            }
+            bool complete = true;
+            for (int s = 0; s < spp; ++s) {
+                if (cancelled()) {
+                    complete = false;
+                    break;
+                }
+                samples.clear();
+                for (size_t i = 0; i < row; ++i) {
+                    samples.push_back(
+                        camera_sample(scene, x0 + static_cast<int>(i), y, s, options.frame));
+                    rays[i] = samples[i].ray;
+                }
+                if (surfaces != nullptr)
+                    surfaces->intersect_coherent(rays.data(), row, first_hits.data());
+                for (size_t i = 0; i < row; ++i) {
+                    const PixelSample p =
+                        trace_camera_ray(scene, rays[i], samples[i].rng, local,
+                                         surfaces != nullptr ? &first_hits[i] : nullptr);
                     if (!is_finite_sample(p)) {
                         ++local.nonfinite_samples;
                         continue;
                     }
+                    PixelSample& sum = sums[i];
                     sum.radiance += p.radiance;
                     sum.surface += p.surface;
                     sum.volume += p.volume;
                     sum.transmittance += p.transmittance;
                     sum.albedo += p.albedo;
                     if (p.hit) {
-                        ++hits;
-                        depth_sum += p.depth;
+                        ++hits[i];
+                        depth_sums[i] += p.depth;
                     }
                 }
-                if (!complete)
-                    break;
-                result.film.set_pixel(x, y, sum, spp, hits, depth_sum);
             }
+            if (!complete)
+                break;
+            for (size_t i = 0; i < row; ++i)
+                result.film.set_pixel(x0 + static_cast<int>(i), y, sums[i], spp, hits[i],
+                                      depth_sums[i]);
         }
         {
             std::lock_guard<std::mutex> lock(counters_mutex);

@@ -338,6 +338,44 @@ std::optional<SurfaceHit> SurfaceScene::intersect(const Ray& ray) const {
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(m_impl->scene, &context, &rayhit);
+    return hit_from(ray, rayhit);
+}
+
+void SurfaceScene::intersect_coherent(const Ray* rays, size_t count,
+                                      std::optional<SurfaceHit>* hits) const {
+    // Embree's stream interface: with the coherent flag it gathers the rays into packets and
+    // traverses them together (one BVH node test for up to 8 rays), which pays for camera rays
+    // of neighbouring pixels. The hits are built exactly as intersect() builds them.
+    constexpr size_t kBatch = 64;
+    RTCRayHit batch[kBatch];
+    for (size_t start = 0; start < count; start += kBatch) {
+        const size_t n = std::min(kBatch, count - start);
+        for (size_t i = 0; i < n; ++i) {
+            const Ray& ray = rays[start + i];
+            m_impl->count(&Impl::RayCounts::closest);
+            KASUMI_DCHECK(std::abs(glm::dot(ray.direction, ray.direction) - 1.0f) < 1e-4f);
+            RTCRayHit& rayhit = batch[i];
+            set_interval(rayhit.ray, ray);
+            if (!(ray.t_min < ray.t_max)) {  // empty: inactive for Embree (tnear > tfar)
+                rayhit.ray.tnear = 1.0f;
+                rayhit.ray.tfar = 0.0f;
+            }
+            rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+            rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        }
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        rtcIntersect1M(m_impl->scene, &context, batch, static_cast<unsigned>(n), sizeof(RTCRayHit));
+        for (size_t i = 0; i < n; ++i) {
+            const Ray& ray = rays[start + i];
+            hits[start + i] = ray.t_min < ray.t_max ? hit_from(ray, batch[i]) : std::nullopt;
+        }
+    }
+}
+
+std::optional<SurfaceHit> SurfaceScene::hit_from(const Ray& ray, const RTCRayHit& rayhit) const {
     if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return std::nullopt;
 

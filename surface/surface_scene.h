@@ -10,6 +10,8 @@
 #include <optional>
 #include <vector>
 
+struct RTCRayHit;  // Embree's (global namespace); its headers stay in surface_scene.cpp
+
 namespace kasumi {
 
 /// A ray-surface intersection. Normals are unit length and point out of the shape (boxes and
@@ -61,6 +63,9 @@ class SurfaceScene {
 
     /// Closest hit with t in (ray.t_min, ray.t_max).
     std::optional<SurfaceHit> intersect(const Ray& ray) const;
+    /// intersect() of `count` rays into hits[0 .. count): for coherent rays (camera rays of
+    /// neighbouring pixels), traced together through the BVH.
+    void intersect_coherent(const Ray* rays, size_t count, std::optional<SurfaceHit>* hits) const;
     /// True if anything is hit with t in (ray.t_min, ray.t_max).
     bool occluded(const Ray& ray) const;
     /// The triangle `hit` lies on; empty for spheres.
@@ -73,6 +78,8 @@ class SurfaceScene {
 
   private:
     struct Impl;
+    /// The SurfaceHit of Embree's answer for `ray` (none if it hit nothing).
+    std::optional<SurfaceHit> hit_from(const Ray& ray, const RTCRayHit& rayhit) const;
     std::unique_ptr<Impl> m_impl;
 };
 
