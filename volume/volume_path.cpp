@@ -209,7 +209,10 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
             0.5 * static_cast<double>(run_end - t_prev) * static_cast<double>(rho_prev + rho_end);
     };
     const DensityGrid& grid = *g->grid;
-    g->grid->walk(o, d, span->first, span->second, [&](const BrickSpan& b, const BrickRef& brick) {
+    // The visit inlined into the walk's loop (GCC kept it a call per brick, its state in the
+    // closure's memory): callgrind, 256³ march 4, whole process 1013 M -> 969 M instructions.
+    const auto visit = [&](const BrickSpan& b, const BrickRef& brick)
+        __attribute__((always_inline)) {
         if (!started) {
             u = rng.next_float();  // drawn where the general path draws it: media ahead
             started = true;
@@ -267,7 +270,8 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
             }
         }
         return true;
-    });
+    };
+    grid.walk(o, d, span->first, span->second, visit);
     if (in_run && !stopped)
         close_run();
     counters.density_lookups += lookups;
