@@ -248,7 +248,8 @@ void check_key_frames(const SceneOptions& options) {
     Json root = read_json_file(options.scene_path);
     apply_overrides(root, overrides, options.scene_path);
     std::set<int64_t> frames;
-    for (const Track& track : parse_animation(root, options.scene_path).tracks) {
+    const Animation animation = parse_animation(root, options.scene_path);
+    for (const Track& track : animation.tracks) {
         for (const Keyframe& key : track.keys)
             frames.insert(key.frame);
     }
@@ -260,8 +261,7 @@ void check_key_frames(const SceneOptions& options) {
                                           options.scene_path),
                         options.scene_path, &cache);
         } catch (const Error& e) {
-            throw Error(e.kind(), std::string(e.what()) + " (at key frame " +
-                                      std::to_string(frame) + " of /animate)");
+            throw Error(e.kind(), e.what() + frame_context(animation, frame, e.what()));
         }
     }
 }

@@ -352,6 +352,42 @@ Json evaluate(const Track& track, int64_t frame) {
     return Json();
 }
 
+std::string frame_context(const Animation& animation, int64_t frame, const std::string& message) {
+    if (animation.empty())
+        return std::string();
+    bool key = false;
+    std::string tracks;
+    for (const Track& track : animation.tracks) {
+        const auto after =
+            std::upper_bound(track.keys.begin(), track.keys.end(), frame,
+                             [](int64_t f, const Keyframe& k) { return f < k.frame; });
+        const bool at_key = after != track.keys.begin() && (after - 1)->frame == frame;
+        key = key || at_key;
+        // The pointer itself or a value under it, as a scene error prints it ("/a/b = 2: ...",
+        // "/a/b/1: ...").
+        bool named = false;
+        for (size_t at = message.find(track.pointer); at != std::string::npos && !named;
+             at = message.find(track.pointer, at + 1)) {
+            const size_t end = at + track.pointer.size();
+            named = end == message.size() ||
+                    std::string(" :/,)").find(message[end]) != std::string::npos;
+        }
+        if (!named || at_key)
+            continue;
+        tracks += "; " + track.pointer;
+        if (after == track.keys.begin() || after == track.keys.end()) {
+            const Keyframe& held =
+                after == track.keys.begin() ? track.keys.front() : track.keys.back();
+            tracks += " held at key frame " + std::to_string(held.frame);
+        } else {
+            tracks += " between key frames " + std::to_string((after - 1)->frame) + " and " +
+                      std::to_string(after->frame);
+        }
+    }
+    return std::string(" (at ") + (key ? "key frame " : "frame ") + std::to_string(frame) +
+           " of /animate" + tracks + ")";
+}
+
 Json frame_document(const Json& root, const Animation& animation, int64_t frame) {
     Json doc = root;
     if (doc.is_object())

@@ -69,6 +69,13 @@ Animation parse_animation(const Json& root, const std::string& file);
 /// outside them; a key's own value exactly at a key frame.
 Json evaluate(const Track& track, int64_t frame);
 
+/// Where `frame` lies in `animation`, appended to an error in that frame's document (empty
+/// without tracks). `kasumi check` names key frames " (at key frame 10 of /animate)"; any other
+/// frame reads " (at frame 7 of /animate)", and either adds each animated pointer that
+/// `message` names (it or a value under it) with its keys around the frame:
+/// "; /media/0/phase/g between key frames 5 and 10" (or "held at key frame 10", outside them).
+std::string frame_context(const Animation& animation, int64_t frame, const std::string& message);
+
 /// The document of `frame`: `root` without "animate", each track's value written at its pointer.
 Json frame_document(const Json& root, const Animation& animation, int64_t frame);
 

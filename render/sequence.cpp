@@ -103,6 +103,18 @@ struct SequenceScene {
         reapply_overrides(doc, options.overrides, options.scene_path);
         return doc;
     }
+
+    /// The scene of `frame`'s document; an input error says where the frame lies among the
+    /// key frames, as `kasumi check` does (frame_context).
+    SceneDesc parse(const Json& doc, int64_t frame) {
+        try {
+            return parse_scene(doc, options.scene_path, &cache);
+        } catch (const Error& e) {
+            if (e.kind() != ErrorKind::Input || animation.empty())
+                throw;
+            throw Error(e.kind(), e.what() + frame_context(animation, frame, e.what()));
+        }
+    }
 };
 
 }  // namespace
@@ -236,8 +248,8 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         if (options.skip_existing && fs::exists(path)) {
             ++summary.skipped;
             if (!preview_path.empty() && !fs::exists(preview_path)) {
-                const PreviewSettings own = preview_settings(
-                    parse_scene(scene.document(frame), options.scene_path, &scene.cache));
+                const PreviewSettings own =
+                    preview_settings(scene.parse(scene.document(frame), frame));
                 dispatch([=, log = options.log] {
                     make_parent_dirs(preview_path);
                     write_preview_png(read_exr(path), preview_path, own);
@@ -252,7 +264,7 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
 
         const auto frame_start = Clock::now();
         const Json doc = scene.document(frame);
-        SceneDesc desc = parse_scene(doc, options.scene_path, &scene.cache);
+        SceneDesc desc = scene.parse(doc, frame);
         const std::string key = options.reuse ? bvh_key(doc) : std::string();
         std::shared_ptr<const SurfaceScene> bvh = scene.cache.surfaces(key);
         const bool bvh_reused = bvh != nullptr;
@@ -384,7 +396,7 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         // One view and exposure for the whole sheet (the first frame's), so it shows how the
         // frames' brightness changes.
         const PreviewSettings sheet_preview = preview_settings(
-            parse_scene(scene.document(options.frames.front()), options.scene_path, &scene.cache));
+            scene.parse(scene.document(options.frames.front()), options.frames.front()));
         make_parent_dirs(options.contact_sheet);
         write_preview_png(make_contact_sheet(cells), options.contact_sheet, sheet_preview);
         summary.contact_sheet = options.contact_sheet;

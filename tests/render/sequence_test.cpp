@@ -478,5 +478,35 @@ TEST(Sequence, AnimationErrorsAreInputErrorsNamingTheScene) {
     EXPECT_FALSE(fs::exists(dir + "/frames"));
 }
 
+TEST(Sequence, ABadValueBetweenKeyFramesNamesTheFrameAndItsKeys) {
+    // spp is an integer at its key frames 0 and 4 but 1.5 at frame 1, no key frame (`check`
+    // cannot see it), and 2.5 at frame 3, the other track's key frame: the error names the
+    // frame as check names key frames, and the keys around it of the value it is about.
+    const std::string dir = test_dir("between_keys");
+    const std::string scene = dir + "/spp.json";
+    std::ofstream(scene) << R"({
+      "film": {"width": 8, "height": 4, "spp": 1},
+      "lights": [{"type": "point", "position": [0, 1, 0], "intensity_cd": 1}],
+      "animate": {"/film/spp": [[0, 1], [4, 3]], "/lights/0/intensity_cd": [[0, 1], [3, 2]]}})";
+    const std::pair<int64_t, std::string> cases[] = {
+        {1, " (at frame 1 of /animate; /film/spp between key frames 0 and 4)"},
+        {3, " (at key frame 3 of /animate; /film/spp between key frames 0 and 4)"}};
+    for (const auto& [frame, context] : cases) {
+        SequenceOptions o = options_for(scene, dir, {frame});
+        o.overrides.clear();
+        try {
+            run_sequence(o);
+            ADD_FAILURE() << "frame " << frame << " rendered";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(e.kind(), ErrorKind::Input);
+            EXPECT_EQ(what.find(scene + ": /film/spp = "), 0u) << what;
+            ASSERT_GE(what.size(), context.size());
+            EXPECT_EQ(what.substr(what.size() - context.size()), context) << what;
+        }
+    }
+    EXPECT_FALSE(fs::exists(dir + "/frames"));
+}
+
 }  // namespace
 }  // namespace kasumi
