@@ -20,12 +20,17 @@ inline Light parse_light_text(const std::string& text, const std::string& file =
     return parse_light(JsonNode(doc, file, "/lights/0"), 0);
 }
 
-/// E = ∫_A L cos θ cos θ' / r² dA over a convex polygon (fan triangles, each mapped from the
+/// Whether the segment from p to target is unoccluded.
+using Visibility = std::function<bool(const Vec3& p, const Vec3& target)>;
+
+/// E = ∫_A L cos θ cos θ' V / r² dA over a convex polygon (fan triangles, each mapped from the
 /// unit square by x = v0 + u (v1 − v0) + u v (v2 − v1), Jacobian 2 A_tri u), midpoint rule on
 /// n × n cells. cos θ at the receiver is clamped at 0 (the horizon); cos θ' is the emission
-/// cosine, negative behind the front unless two_sided.
+/// cosine, negative behind the front unless two_sided; V is `visible(p, x)` toward each cell's
+/// point x (1 when empty).
 inline double polygon_quadrature(const std::vector<Vec3>& vertices, double luminance,
-                                 bool two_sided, const Vec3& p, const Vec3& n, int cells) {
+                                 bool two_sided, const Vec3& p, const Vec3& n, int cells,
+                                 const Visibility& visible = {}) {
     DVec3 normal(0.0);
     for (size_t i = 0; i < vertices.size(); ++i)
         normal += glm::cross(DVec3(vertices[i]), DVec3(vertices[(i + 1) % vertices.size()]));
@@ -47,7 +52,9 @@ inline double polygon_quadrature(const std::vector<Vec3>& vertices, double lumin
                 double cos_emitter = -glm::dot(normal, d) / r;
                 if (two_sided)
                     cos_emitter = std::abs(cos_emitter);
-                if (cos_emitter <= 0.0)
+                if (cos_emitter <= 0.0 || cos_receiver <= 0.0)
+                    continue;
+                if (visible && !visible(p, Vec3(x)))
                     continue;
                 sum += cos_receiver * cos_emitter / r2 * area2 * u;
             }
@@ -94,9 +101,6 @@ inline double sphere_quadrature(const Vec3& center, double radius, double lumina
     }
     return luminance * sum * (1.0 - cos_sigma) * 2.0 * kPiD / (static_cast<double>(cells) * cells);
 }
-
-/// Whether the segment from p to target is unoccluded.
-using Visibility = std::function<bool(const Vec3& p, const Vec3& target)>;
 
 /// The shadowed illuminance E = L ∫ max(0, n·ω) V dω over the cone `light` subtends at p, where
 /// V is `visible` toward a target far beyond the light along ω (the occluder lies between p and

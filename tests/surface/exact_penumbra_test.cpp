@@ -11,6 +11,7 @@
 #include "lights/sphere_light.h"
 #include "surface/sphere_light_occluders.h"
 #include "surface/surface_scene.h"
+#include "tests/lights/light_test_util.h"
 
 #include <gtest/gtest.h>
 
@@ -164,35 +165,17 @@ TEST(ExactPenumbra, MatchesQuadratureOfTheVisibleConeAcrossPenumbrae) {
     }
 }
 
-/// E / L = ∫ max(0, n·ω) V dω over a polygon light by the midpoint rule over its area (fan
-/// triangles mapped from the unit square, x = v0 + u (v1 − v0) + u v (v2 − v1), Jacobian
-/// 2 A u), dω = |cos θ'| dA / r², V from a shadow ray to each cell.
+/// E / L = ∫ max(0, n·ω) V dω over a polygon light by the midpoint rule over its area
+/// (test::polygon_quadrature), V from a shadow ray to each cell.
 double polygon_quadrature(const SurfaceScene& scene, const PolygonLight& light, const Vec3& p,
                           const Vec3& n, int cells) {
-    double sum = 0.0;
-    const DVec3 q(p), nd(n), ln(light.normal);
-    for (size_t t = 1; t + 1 < light.vertices.size(); ++t) {
-        const DVec3 v0(light.vertices[0]), v1(light.vertices[t]), v2(light.vertices[t + 1]);
-        const double area2 = glm::length(glm::cross(v1 - v0, v2 - v0));
-        for (int i = 0; i < cells; ++i) {
-            const double u = (i + 0.5) / cells;
-            for (int j = 0; j < cells; ++j) {
-                const double v = (j + 0.5) / cells;
-                const DVec3 x = v0 + u * (v1 - v0) + u * v * (v2 - v1);
-                const DVec3 to = x - q;
-                const double r2 = glm::dot(to, to);
-                const DVec3 w = to / std::sqrt(r2);
-                const double cos_r = glm::dot(nd, w);
-                if (cos_r <= 0.0)
-                    continue;
-                if (scene.occluded(
-                        Ray{p, Vec3(w), 0.0f, static_cast<float>(std::sqrt(r2)) * (1.0f - 1e-5f)}))
-                    continue;
-                sum += cos_r * std::abs(glm::dot(ln, w)) / r2 * area2 * u;
-            }
-        }
-    }
-    return sum / (static_cast<double>(cells) * cells);
+    return test::polygon_quadrature(
+        light.vertices, 1.0, light.two_sided, p, n, cells, [&](const Vec3& from, const Vec3& to) {
+            const DVec3 d = DVec3(to) - DVec3(from);
+            const double r = glm::length(d);
+            return !scene.occluded(
+                Ray{from, Vec3(d / r), 0.0f, static_cast<float>(r) * (1.0f - 1e-5f)});
+        });
 }
 
 TEST(ExactPenumbra, PolygonLightMatchesQuadratureOfItsArea) {

@@ -5,9 +5,7 @@
 // multiple scattering in a grid against the same paths without the roulette. Statistical
 // assertions at 4 standard errors (two-sided Gaussian false-failure rate 6e-5 each, 10
 // assertions of that kind: about 6e-4 for the file; fixed seeds, so a pass is reproducible).
-#include "tests/sample_mean.h"
-#include "vdb_test_grids.h"
-#include "volume/volume_path.h"
+#include "sun_lit_media.h"
 #include "white_furnace.h"
 
 #include <gtest/gtest.h>
@@ -35,29 +33,21 @@ double hg(double g, double mu) {
 }
 
 TEST(NeeRoulette, HomogeneousBoxUnderASunIsExact) {
-    // A box [-1, 1]³ of sigma_s = 2, sigma_a = 0.5 per metre, HG phase, lit from +y by a sun of
-    // irradiance 1; a camera ray along +x at height y0 crosses it over 2 m, every point of it
-    // 1 - y0 below the top face and the scattering cosine toward the sun is mu = 0, so
-    //   L = sigma_s p(0) exp(-sigma_t (1 - y0)) (1 - exp(-2 sigma_t)) / sigma_t.
+    // test::SunLitBox with HG g: L = sigma_s p(0) exp(-sigma_t (1 - y0)) (1 - exp(-2 sigma_t)) /
+    // sigma_t, the scattering cosine toward the sun being mu = 0 all along the ray.
     // g = 0.5: 4 pi p(0) = 0.54, the survival probability; g = -0.9: 4 pi p(0) = 0.078, so q
     // is the floor 0.1.
-    const float sigma_s = 2.0f, sigma_a = 0.5f, sigma_t = sigma_s + sigma_a, y0 = 0.2f;
-    const std::vector<Light> sun{Light{"sun", DirectionalLight{Vec3(0, -1, 0), Rgb(1.0f)}}};
-    const Ray ray{Vec3(-3.0f, y0, 0.1f), Vec3(1, 0, 0), 0.0f, kInfinity};
     for (const float g : {0.5f, -0.9f}) {
-        const MediumSet box(
-            {Medium{"box", HomogeneousMedium{Bounds3{Vec3(-1.0f), Vec3(1.0f)}, Rgb(sigma_a),
-                                             Rgb(sigma_s), HenyeyGreenstein{g}}}});
-        const double expected = sigma_s * hg(g, 0.0) * std::exp(-sigma_t * (1.0 - y0)) *
-                                (1.0 - std::exp(-2.0 * sigma_t)) / sigma_t;
+        const test::SunLitBox box{HenyeyGreenstein{g}};
+        const double expected = test::SunLitBox::single_scattering(hg(g, 0.0));
         for (const int k : {0, 1}) {
             const VolumeSettings s = tracker(VolumeIntegrator::Single, true, k);
             VolumeCounters counters;
             const MeanAndError l = mean_over_streams(160000, 31, [&](Pcg32& rng) {
                 // Nothing behind: no separate walk for the camera ray's transmittance, so
                 // every transmittance estimate counted is a shadow ray's.
-                return integrate_media(box, sun, nullptr, nullptr, ray, s, true, rng, counters,
-                                       true)
+                return integrate_media(box.media, box.sun, nullptr, nullptr, box.ray, s, true, rng,
+                                       counters, true)
                     .radiance.g;
             });
             EXPECT_NEAR(l.mean, expected, 4.0 * l.stderr_) << "g " << g << ", nee_points " << k;
@@ -72,48 +62,13 @@ TEST(NeeRoulette, HomogeneousBoxUnderASunIsExact) {
 }
 
 TEST(NeeRoulette, HeterogeneousGridMatchesAFineMarch) {
-    // A 24³ grid of smoothly varying density (0.1 .. 1.9), albedo 0.8, HG g = -0.5 (q = 0.39
-    // toward this sun), lit by an oblique sun. Reference: marched single scattering at 1/8
-    // voxel (O(h²) bias, well below the statistics here), averaged over 64 jitter offsets.
-    constexpr int n = 24;
-    DenseVoxels v;
-    v.dims = IVec3(n);
-    v.values.resize(static_cast<size_t>(n) * n * n);
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                v.values[x + n * (y + n * z)] =
-                    1.0f + 0.9f * std::sin(0.7f * x) * std::cos(0.45f * y + 0.3f * z);
-    const std::string path = test::temp_grid_path("nee_roulette_hetero");
-    write_fog_volume(path, "density", v, 0.1, Vec3(0.0f));
-    const MediumSet grid({test::vdb_medium(
-        path,
-        {{"density_scale", 2.0}, {"albedo", 0.8}, {"phase", {{"model", "hg"}, {"g", -0.5}}}})});
-    const std::vector<Light> sun{
-        Light{"sun", DirectionalLight{glm::normalize(Vec3(-0.3f, -1.0f, 0.4f)), Rgb(3.0f)}}};
-    const Ray ray{Vec3(-1.0f, 1.1f, 0.9f), glm::normalize(Vec3(1.0f, 0.1f, 0.15f)), 0.0f,
-                  kInfinity};
-    VolumeSettings march;
-    march.estimator = Estimator::March;
-    march.step_voxels = 0.125f;
-    const MeanAndError reference = mean_over_streams(64, 31, [&](Pcg32& rng) {
-        VolumeCounters counters;
-        return integrate_media(grid, sun, nullptr, nullptr, ray, march, true, rng, counters)
-            .radiance.g;
-    });
+    // test::SunLitGrid with HG g = -0.5 (q = 0.39 toward its sun) against its marched reference.
+    const test::SunLitGrid grid("nee_roulette_hetero", -0.5f);
+    const MeanAndError reference = grid.march_reference(31);
     ASSERT_GT(reference.mean, 0.0);
     for (const int k : {0, 4}) {
-        const VolumeSettings s = tracker(VolumeIntegrator::Single, true, k);
-        const MeanAndError l = mean_over_streams(160000, 31, [&](Pcg32& rng) {
-            VolumeCounters counters;
-            return integrate_media(grid, sun, nullptr, nullptr, ray, s, true, rng, counters)
-                .radiance.g;
-        });
-        const double se = std::hypot(l.stderr_, reference.stderr_);
-        EXPECT_NEAR(l.mean, reference.mean, 4.0 * se + 1e-3 * reference.mean) << "nee_points " << k;
-        EXPECT_LT(4.0 * se, 0.04 * reference.mean) << "nee_points " << k;
-        std::printf("nee_points %d: %.6g +- %.2g, march %.6g +- %.2g\n", k, l.mean, l.stderr_,
-                    reference.mean, reference.stderr_);
+        grid.expect_matches(reference, tracker(VolumeIntegrator::Single, true, k), 31, 0.04,
+                            "nee_points " + std::to_string(k));
     }
 }
 
