@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <cfloat>
 #include <cstdint>
 
@@ -67,6 +68,9 @@ DensityGridBuild DensityGridBuilder::build(IVec3 index_min, IVec3 index_max,
     // voxel of each block.
     std::vector<uint8_t> touched(count, 0);
     std::vector<int> invalid_at(count, -1);
+    // Per block, its non-zero active voxels (word x, bit y << 3 | z): pass 2 writes only these.
+    using BlockBits = std::array<uint64_t, VoxelBlock::kEdge>;
+    std::vector<BlockBits, ZeroedAllocator<BlockBits>> nonzero_bits(count);  // every one written
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, count), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t b = r.begin(); b != r.end(); ++b) {
@@ -85,6 +89,8 @@ DensityGridBuild DensityGridBuilder::build(IVec3 index_min, IVec3 index_max,
                             nonzero[w] |= word & (~word + 1);  // the lowest set bit: n
                     }
                 }
+                for (int w = 0; w < VoxelBlock::kEdge; ++w)
+                    nonzero_bits[b][static_cast<size_t>(w)] = nonzero[w];
                 const BlockBricks bricks(block.origin - grid->m_origin);
                 uint8_t mask = 0;
                 for (int k = 0; k < 8; ++k) {
@@ -143,14 +149,14 @@ DensityGridBuild DensityGridBuilder::build(IVec3 index_min, IVec3 index_max,
                     continue;
                 const VoxelBlock& block = blocks[b];
                 // The block transposed to the bricks' order (x fastest), inactive and zero
-                // voxels as +0: each brick then takes runs of consecutive floats along x.
-                float t[VoxelBlock::kVoxels];
+                // voxels as +0: each brick then takes runs of consecutive floats along x. Only
+                // the non-zero active voxels pass 1 found are copied; the rest stay +0.
+                float t[VoxelBlock::kVoxels] = {};
                 for (int x = 0; x < VoxelBlock::kEdge; ++x) {
-                    const uint64_t word = block.active[x];
-                    for (int yz = 0; yz < 64; ++yz) {
-                        const float v = block.values[(x << 6) | yz];
-                        t[x + 8 * ((yz >> 3) + 8 * (yz & 7))] =
-                            ((word >> yz) & 1) && v != 0.0f ? v : 0.0f;
+                    for (uint64_t word = nonzero_bits[b][static_cast<size_t>(x)]; word != 0;
+                         word &= word - 1) {
+                        const int yz = __builtin_ctzll(word);
+                        t[x + 8 * ((yz >> 3) + 8 * (yz & 7))] = block.values[(x << 6) | yz];
                     }
                 }
                 const BlockBricks bricks(block.origin - grid->m_origin);
