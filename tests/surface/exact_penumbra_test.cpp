@@ -41,35 +41,20 @@ Shape quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
 }
 
 /// ∫ max(0, n·ω) V(ω) dω over the light's cone by the midpoint rule in (cos θ, φ) (equal solid
-/// angle per cell), V from one shadow ray per cell to the light. Its error is the cells cut by
-/// a shadow edge: O(1/cells) of the cone.
+/// angle per cell; test::sphere_quadrature), V from one shadow ray per cell to the light's near
+/// surface. Its error is the cells cut by a shadow edge: O(1/cells) of the cone.
 double quadrature(const SurfaceScene& scene, const SphereLight& light, const Vec3& p, const Vec3& n,
                   int cells) {
-    const DVec3 to = DVec3(light.center) - DVec3(p);
-    const double d = glm::length(to);
-    const double sin_s = light.radius / d;
-    const double cos_s = std::sqrt(1.0 - sin_s * sin_s);
-    const Frame frame(Vec3(to / d));
-    double sum = 0.0;
-    for (int i = 0; i < cells; ++i) {
-        const double c = cos_s + (i + 0.5) / cells * (1.0 - cos_s);
-        const double s = std::sqrt(1.0 - c * c);
-        for (int j = 0; j < cells; ++j) {
-            const double phi = (j + 0.5) / cells * 2.0 * kPiD;
-            const Vec3 w = glm::normalize(
-                frame.to_world(Vec3(static_cast<float>(s * std::cos(phi)),
-                                    static_cast<float>(s * std::sin(phi)), static_cast<float>(c))));
-            const double cos_n = glm::dot(DVec3(n), DVec3(w));
-            if (cos_n <= 0.0)
-                continue;
-            // Distance to the light along w: d cos θ − √(R² − d² sin² θ).
-            const double t = d * c - std::sqrt(std::max(
-                                         0.0, double(light.radius) * light.radius - d * d * s * s));
-            if (!scene.occluded(Ray{p, w, 0.0f, static_cast<float>(t)}))
-                sum += cos_n;
-        }
-    }
-    return sum * (1.0 - cos_s) * 2.0 * kPiD / (static_cast<double>(cells) * cells);
+    const auto visible = [&](const Vec3& from, const Vec3& beyond) {
+        const DVec3 w = glm::normalize(DVec3(beyond) - DVec3(from));
+        const DVec3 to = DVec3(light.center) - DVec3(from);
+        const double b = glm::dot(to, w);
+        // Distance to the light along w: b − √(R² − (|to|² − b²)).
+        const double t = b - std::sqrt(std::max(0.0, double(light.radius) * light.radius -
+                                                         (glm::dot(to, to) - b * b)));
+        return !scene.occluded(Ray{from, Vec3(w), 0.0f, static_cast<float>(t)});
+    };
+    return test::sphere_quadrature(light, p, n, visible, cells) / luminance(light.luminance);
 }
 
 /// Snyder's closed form (clipped at the horizon), per unit luminance.
