@@ -2,6 +2,7 @@
 
 #include "phase/phase_json.h"
 #include "volume/vdb_io.h"
+#include "volume/visibility.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -24,8 +25,44 @@ HomogeneousMedium parse_homogeneous(JsonObjectReader& reader) {
         }
         m.bounds = b;
     }
-    m.sigma_a = reader.required("sigma_a").non_negative_rgb();
-    m.sigma_s = reader.required("sigma_s").non_negative_rgb();
+    auto visibility = reader.optional("visibility_m");
+    auto threshold = reader.optional("contrast_threshold");
+    auto albedo = reader.optional("albedo");
+    if (visibility) {
+        // Fog given by its visibility (volume/visibility.h): sigma_t = -ln(eps) / V, grey,
+        // split by the albedo.
+        if (reader.has("sigma_a") || reader.has("sigma_s"))
+            visibility->fail("give either visibility_m or sigma_a and sigma_s, not both");
+        const double visibility_m = visibility->as_double();
+        if (!(visibility_m > 0.0))
+            visibility->fail("must be > 0");
+        double eps = kMorContrastThreshold;
+        if (threshold) {
+            eps = threshold->as_double();
+            if (!(eps > 0.0 && eps < 1.0))
+                threshold->fail("must be in (0, 1)");
+        }
+        const double sigma_t = extinction_from_visibility(visibility_m, eps);
+        if (!(sigma_t <= 3.0e38))
+            visibility->fail("too short: sigma_t = -ln(eps) / V is beyond single precision");
+        Rgb a(1.0f);
+        if (albedo) {
+            a = albedo->non_negative_rgb();
+            if (max_component(a) > 1.0f)
+                albedo->fail("must be in [0, 1] per channel");
+        }
+        m.sigma_s = a * static_cast<float>(sigma_t);
+        m.sigma_a = (Rgb(1.0f) - a) * static_cast<float>(sigma_t);
+    } else {
+        if (threshold)
+            threshold->fail("goes with visibility_m");
+        if (albedo)
+            albedo->fail("goes with visibility_m (else give sigma_a and sigma_s)");
+        if (!reader.has("sigma_a") && !reader.has("sigma_s"))
+            reader.node().fail("give sigma_a and sigma_s, or visibility_m");
+        m.sigma_a = reader.required("sigma_a").non_negative_rgb();
+        m.sigma_s = reader.required("sigma_s").non_negative_rgb();
+    }
     if (auto phase = reader.optional("phase"))
         m.phase = parse_phase(*phase);
     return m;
