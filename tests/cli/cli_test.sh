@@ -60,6 +60,12 @@ expect_exit 2 "--origin" -- probe radiance "$work/ok.json" --origin 1,2 --direct
 # check and plan.
 expect_exit 0 "" -- check "$work/ok.json"
 grep -q "ok" "$work/stdout" || fail "check prints no ok"
+# Fog by visibility (docs/volumes.md): the example scene checks; visibility with a sigma is an
+# error at the visibility's JSON path.
+fogvis="$src/data/scenes/fog_visibility.json"
+expect_exit 0 "" -- check "$fogvis"
+expect_exit 3 "fog_visibility.json: /media/0/visibility_m.*not both" -- check "$fogvis" --set /media/0/sigma_s=0.1
+expect_exit 3 "/media/0/visibility_m = 0.*> 0" -- check "$fogvis" --set /media/0/visibility_m=0
 expect_exit 0 "" -- plan "$work/ok.json" --json
 grep -q '"volume-in-scattering"' "$work/stdout" || fail "plan --json lacks the in-scattering stage"
 expect_exit 0 "" -- plan "$work/ok.json" --set /media/0/sigma_s=0
