@@ -1,11 +1,13 @@
 #pragma once
-/// Participating media as a closed set of value types (homogeneous boxes and VDB density grids;
-/// height fog and the atmosphere join later). Coefficients are per metre, per RGB channel.
+/// Participating media as a closed set of value types (homogeneous boxes, height fog and VDB
+/// density grids; the atmosphere is rendered by volume/sky_renderer). Coefficients are per metre,
+/// per RGB channel.
 #include "core/bounds.h"
 #include "core/color.h"
 #include "phase/phase_function.h"
 #include "volume/blackbody.h"
 #include "volume/density_grid.h"
+#include "volume/height_fog.h"
 
 #include <memory>
 #include <optional>
@@ -66,7 +68,7 @@ struct VdbMedium {
 
 struct Medium {
     std::string name;
-    std::variant<HomogeneousMedium, VdbMedium> model;
+    std::variant<HomogeneousMedium, VdbMedium, HeightFogMedium> model;
 };
 
 /// Single-scattering albedo sigma_s / sigma_t per channel (0 where sigma_t = 0).

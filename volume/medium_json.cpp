@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 namespace kasumi {
@@ -65,6 +66,28 @@ HomogeneousMedium parse_homogeneous(JsonObjectReader& reader) {
     }
     if (auto phase = reader.optional("phase"))
         m.phase = parse_phase(*phase);
+    return m;
+}
+
+/// Height fog: the homogeneous keys (bounds, coefficients or visibility at the reference
+/// height, phase) plus `scale_height_m` H > 0 (required) and `reference_height_m` h0 (default 0).
+HeightFogMedium parse_height_fog(JsonObjectReader& reader) {
+    const JsonNode scale = reader.required("scale_height_m");
+    const HomogeneousMedium at_h0 = parse_homogeneous(reader);
+    HeightFogMedium m;
+    m.bounds = at_h0.bounds;
+    m.sigma_a = at_h0.sigma_a;
+    m.sigma_s = at_h0.sigma_s;
+    m.phase = at_h0.phase;
+    m.scale_height_m = scale.as_double();
+    if (!(m.scale_height_m > 0.0 && std::isfinite(m.scale_height_m)))
+        scale.fail("must be > 0 and finite (an infinite H is a homogeneous medium)");
+    if (auto h0 = reader.optional("reference_height_m")) {
+        m.reference_height_m = h0->as_double();
+        if (!std::isfinite(m.reference_height_m))
+            h0->fail("must be finite");
+    }
+    m.cap_density();
     return m;
 }
 
@@ -204,8 +227,10 @@ Medium parse_medium(const JsonNode& node, size_t index, const std::string& base_
         medium.model = parse_homogeneous(reader);
     } else if (type == "vdb") {
         medium.model = parse_vdb(reader, base_dir);
+    } else if (type == "height_fog") {
+        medium.model = parse_height_fog(reader);
     } else {
-        type_node.fail("unknown medium type (expected homogeneous or vdb)");
+        type_node.fail("unknown medium type (expected homogeneous, height_fog or vdb)");
     }
     reader.finish();
     return medium;

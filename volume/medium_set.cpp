@@ -5,6 +5,7 @@
 #include "volume/light_cache.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace kasumi {
 
@@ -24,12 +25,16 @@ std::optional<std::pair<float, float>> overlap(const HomogeneousMedium& m, const
 Rgb sigma_s_of(const Medium& medium) {
     if (const HomogeneousMedium* h = homogeneous(medium))
         return h->sigma_s;
+    if (const auto* f = std::get_if<HeightFogMedium>(&medium.model))
+        return f->sigma_s;  // at the reference height: zero exactly when zero everywhere
     return std::get<VdbMedium>(medium.model).sigma_s_per_density;
 }
 
 const PhaseFunction& phase_of(const Medium& medium) {
     if (const HomogeneousMedium* h = homogeneous(medium))
         return h->phase;
+    if (const auto* f = std::get_if<HeightFogMedium>(&medium.model))
+        return f->phase;
     return std::get<VdbMedium>(medium.model).phase;
 }
 
@@ -41,8 +46,99 @@ float grid_density(const VdbMedium& m, const Vec3& p) {
 Rgb sigma_s_at(const Medium& medium, const Vec3& p) {
     if (const HomogeneousMedium* h = homogeneous(medium))
         return h->sigma_s;
+    if (const auto* f = std::get_if<HeightFogMedium>(&medium.model))
+        return f->sigma_s * static_cast<float>(f->relative_density(p.y));
     const VdbMedium& v = std::get<VdbMedium>(medium.model);
     return v.sigma_s_per_density * grid_density(v, p);
+}
+
+/// Beyond the part of a ray where the fog's remaining optical depth is below this, its
+/// majorant segments stop (the trackers' transmittance then errs by under 1e-7 relative).
+constexpr double kNegligibleFogDepth = 1e-7;
+/// Most majorant segments of one height fog along a ray.
+constexpr int kMaxFogSegments = 256;
+
+/// A height fog's majorant segments along the ray: the clipped span cut into pieces over which
+/// the height changes by at most one scale height H (so majorant / minorant <= e), each with the
+/// exact bounds, the density at its lowest and highest point (inflated by 1e-5 relative against
+/// the rounding of t to float). Parts above the height where the fog's remaining depth is below
+/// kNegligibleFogDepth are left out; below the density cap (HeightFogMedium::max_e_folds) one
+/// constant piece covers the rest.
+void height_fog_segments(const HeightFogMedium& m, uint32_t bit, const Ray& ray,
+                         std::vector<MajorantSegment>& out) {
+    const Rgb sigma_t = m.sigma_t();
+    const double sigma_max = max_component(sigma_t);
+    if (!(sigma_max > 0.0))
+        return;
+    double t0 = ray.t_min, t1 = ray.t_max;
+    if (m.bounds) {
+        const auto span = m.bounds->clip(ray);
+        if (!span)
+            return;
+        t0 = span->first;
+        t1 = span->second;
+    }
+    if (!(t1 > t0))
+        return;
+    const double H = m.scale_height_m, oy = ray.origin.y, dy = ray.direction.y;
+    // Scaled height a(t) = (y(t) - h0) / H; the density is exp(min(-a, max_e_folds)).
+    auto a_at = [&](double t) { return (oy + dy * t - m.reference_height_m) / H; };
+    auto density = [&](double a) { return std::exp(std::min(-a, m.max_e_folds)); };
+    auto push = [&](double ta, double tb, double d_max, double d_min) {
+        const float fa = static_cast<float>(ta), fb = static_cast<float>(tb);
+        if (!(fb > fa) || !(d_max > 0.0))
+            return;
+        out.push_back({fa, fb, sigma_t * static_cast<float>(d_max * (1.0 + 1e-5)),
+                       sigma_t * static_cast<float>(d_min * (1.0 - 1e-5)), bit});
+    };
+    const double s = dy / H;  // d a / d t, per metre
+    const bool endless = !(t1 < static_cast<double>(kInfinity));
+    if (s == 0.0 || (!endless && std::abs(s) * (t1 - t0) <= 1.0)) {
+        const double da = density(a_at(t0)), db = endless ? da : density(a_at(t1));
+        push(t0, t1, std::max(da, db), std::min(da, db));
+        return;
+    }
+    // Leave out what lies above a_top: there the depth left is at most
+    // sigma_max e^{-a_top} min(L, 1/|s|) = kNegligibleFogDepth.
+    const double reach = endless ? 1.0 / std::abs(s) : std::min(t1 - t0, 1.0 / std::abs(s));
+    const double a_top = std::log(sigma_max * reach / kNegligibleFogDepth);
+    const double a_cap = -m.max_e_folds;  // below it the density is constant
+    auto t_at = [&](double a) { return (a * H + m.reference_height_m - oy) / dy; };
+    // The span's pieces in ray order: [t0, t1] split where a crosses a_top and a_cap.
+    double ta = t0, tb = t1;
+    if (s > 0.0) {
+        if (a_at(ta) >= a_top)
+            return;
+        tb = std::min(tb, t_at(a_top));
+        if (a_at(ta) < a_cap) {
+            const double t_cap = std::min(t_at(a_cap), tb);
+            push(ta, t_cap, density(a_at(ta)), density(a_at(t_cap)));
+            ta = t_cap;
+        }
+    } else {
+        if (!endless && a_at(tb) >= a_top)
+            return;
+        ta = std::max(ta, t_at(a_top));
+    }
+    double t_end = tb;  // where the e-fold pieces stop (descending: at the cap)
+    if (s < 0.0 && (endless || a_at(tb) < a_cap))
+        t_end = std::max(ta, t_at(a_cap));
+    if (t_end > ta) {
+        const double folds = std::abs(a_at(t_end) - a_at(ta));
+        const int n = std::clamp(static_cast<int>(std::ceil(folds)), 1, kMaxFogSegments);
+        const double step = (t_end - ta) / n;
+        double t_prev = ta;
+        for (int i = 1; i <= n; ++i) {
+            const double t_next = i == n ? t_end : ta + step * i;
+            const double d_prev = density(a_at(t_prev)), d_next = density(a_at(t_next));
+            push(t_prev, t_next, std::max(d_prev, d_next), std::min(d_prev, d_next));
+            t_prev = t_next;
+        }
+    }
+    if (t_end < tb) {  // descending below the cap: constant
+        const double d = std::exp(m.max_e_folds);
+        push(t_end, tb, d, d);
+    }
 }
 
 /// One medium's stretches along the ray, tagged with its bit, appended to `out`.
@@ -53,6 +149,10 @@ void medium_segments(const Medium& medium, uint32_t bit, const Ray& ray,
         const auto span = overlap(*h, ray);
         if (span && span->second > span->first && max_component(sigma_t) > 0.0f)
             out.push_back({span->first, span->second, sigma_t, sigma_t, bit});
+        return;
+    }
+    if (const auto* f = std::get_if<HeightFogMedium>(&medium.model)) {
+        height_fog_segments(*f, bit, ray, out);
         return;
     }
     const VdbMedium& v = std::get<VdbMedium>(medium.model);
@@ -81,7 +181,10 @@ MediumSet::MediumSet(std::vector<Medium> media)
                                     [](const Medium& m) { return homogeneous(m) != nullptr; });
     for (const Medium& m : m_media) {
         const HomogeneousMedium* h = homogeneous(m);
-        const Rgb t = h ? h->sigma_t() : std::get<VdbMedium>(m.model).sigma_t_per_density();
+        const auto* fog = std::get_if<HeightFogMedium>(&m.model);
+        const Rgb t = h     ? h->sigma_t()
+                      : fog ? fog->sigma_t()
+                            : std::get<VdbMedium>(m.model).sigma_t_per_density();
         if (!(t.r == t.g && t.g == t.b))
             m_grey_extinction = false;
         FastMedium f;
@@ -138,6 +241,10 @@ float MediumSet::smallest_voxel_m() const {
 Rgb MediumSet::optical_depth(const Ray& ray) const {
     Rgb tau(0.0f);
     for (const Medium& medium : m_media) {
+        if (const auto* fog = std::get_if<HeightFogMedium>(&medium.model)) {
+            tau += height_fog_optical_depth(*fog, ray);  // closed form (volume/height_fog.h)
+            continue;
+        }
         const HomogeneousMedium* m = homogeneous(medium);
         if (m == nullptr)
             continue;
@@ -265,6 +372,10 @@ PointCoefficients MediumSet::coefficients(const Vec3& p, uint32_t mask) const {
         if (const HomogeneousMedium* h = homogeneous(medium)) {
             c.sigma_t += h->sigma_t();
             c.sigma_s += h->sigma_s;
+        } else if (const auto* f = std::get_if<HeightFogMedium>(&medium.model)) {
+            const float rho = static_cast<float>(f->relative_density(p.y));
+            c.sigma_t += f->sigma_t() * rho;
+            c.sigma_s += f->sigma_s * rho;
         } else {
             const VdbMedium& v = std::get<VdbMedium>(medium.model);
             const float d = grid_density(v, p);
