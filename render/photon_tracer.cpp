@@ -109,6 +109,9 @@ BoundingSphere scene_bounding_sphere(const SceneRuntime& scene) {
                 bounds.extend(*h->bounds);
         } else if (const auto* v = std::get_if<VdbMedium>(&m.model)) {
             bounds.extend(v->bounds_world);
+        } else if (const auto* f = std::get_if<HeightFogMedium>(&m.model)) {
+            if (f->bounds)
+                bounds.extend(*f->bounds);
         }
     }
     BoundingSphere sphere;

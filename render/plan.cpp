@@ -28,13 +28,18 @@ std::string count(size_t n, const char* what) {
 }
 
 std::string media_summary(const SceneDesc& scene) {
-    size_t grids = 0;
-    for (const Medium& m : scene.media)
+    size_t grids = 0, fogs = 0;
+    for (const Medium& m : scene.media) {
         grids += std::holds_alternative<VdbMedium>(m.model) ? 1 : 0;
-    const size_t boxes = scene.media.size() - grids;
+        fogs += std::holds_alternative<HeightFogMedium>(m.model) ? 1 : 0;
+    }
+    const size_t boxes = scene.media.size() - grids - fogs;
     std::string text;
     if (boxes > 0)
         text = count(boxes, "homogeneous medium");
+    if (fogs > 0)
+        text += (text.empty() ? "" : " + ") + count(fogs, "height fog") +
+                " (closed-form optical depth; e-fold majorant segments)";
     if (grids > 0)
         text += (text.empty() ? "" : " + ") + count(grids, "VDB grid");
     return text;
@@ -60,7 +65,10 @@ std::string estimator_summary(const SceneDesc& scene) {
             text += ", residual ratio tracking against the minorant (unbiased)";
             break;
     }
-    if (!homogeneous)
+    const bool grids = std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) {
+        return std::holds_alternative<VdbMedium>(m.model);
+    });
+    if (grids)
         text += "; per-brick majorants, DDA skips empty bricks";
     return text;
 }

@@ -200,6 +200,19 @@ ScatteringBound scattering_bound(const std::vector<Medium>& media) {
             sigma_t_max = v->sigma_t_per_density() * d;
             sigma_s_max = v->sigma_s_per_density * d;
             box = v->bounds_world;
+        } else if (const auto* f = std::get_if<HeightFogMedium>(&m.model)) {
+            // The box's mean extinction: the mean of exp(-(y - h0) / H) over its height,
+            // H (e^{-a_min} - e^{-a_max}) / (y_max - y_min), in closed form.
+            bounded = f->bounds.has_value();
+            double mean = 1.0;
+            if (bounded) {
+                box = *f->bounds;
+                const double a0 = (box.min.y - f->reference_height_m) / f->scale_height_m;
+                const double da = (double(box.max.y) - box.min.y) / f->scale_height_m;
+                mean = std::exp(-a0) * one_minus_exp_over(da);
+            }
+            sigma_t_max = f->sigma_t() * static_cast<float>(mean);
+            sigma_s_max = f->sigma_s * static_cast<float>(mean);
         }
         for (int c = 0; c < 3; ++c) {
             if (sigma_t_max[c] > 0.0f) {

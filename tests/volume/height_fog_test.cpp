@@ -312,6 +312,20 @@ TEST(HeightFog, VisibilityKeysGiveSigmaAtTheReferenceHeight) {
     EXPECT_NEAR(t.r, 0.05f, 1e-6f);
 }
 
+// The example scene's fog: 80 m MOR at the valley floor (a horizontal ray there keeps 5% over
+// 80 m), e^{45/12} times thinner at the camera's height.
+TEST(HeightFog, ExampleSceneFog) {
+    const std::string path = std::string(KASUMI_SOURCE_DIR) + "/data/scenes/fog_height.json";
+    const Json doc = read_json_file(path);
+    const Medium fog_medium = parse_medium(JsonNode(doc["media"][0], path, "/media/0"), 0);
+    const MediumSet media({fog_medium});
+    const Rgb t = media.transmittance(Ray{Vec3(0, 0, 0), Vec3(0, 0, -1), 0.0f, 80.0f});
+    EXPECT_NEAR(t.g, 0.05f, 0.05f * 1e-5f);
+    const float floor = media.coefficients(Vec3(0, 0, 0), 1u).sigma_t.g;
+    const float camera = media.coefficients(Vec3(0, 45, 0), 1u).sigma_t.g;
+    EXPECT_NEAR(floor / camera, std::exp(45.0f / 12.0f), 1e-3f);
+}
+
 TEST(HeightFog, BadInputIsLocated) {
     const std::string head = R"({"type": "height_fog", "sigma_a": 0.01, "sigma_s": 0.02, )";
     for (const char* bad : {R"("scale_height_m": 0})", R"("scale_height_m": -3})"}) {
