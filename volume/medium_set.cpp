@@ -179,6 +179,9 @@ MediumSet::MediumSet(std::vector<Medium> media)
     KASUMI_CHECK(m_media.size() <= kMaxMedia);
     m_all_homogeneous = std::all_of(m_media.begin(), m_media.end(),
                                     [](const Medium& m) { return homogeneous(m) != nullptr; });
+    m_closed_form = std::all_of(m_media.begin(), m_media.end(), [](const Medium& m) {
+        return !std::holds_alternative<VdbMedium>(m.model);
+    });
     for (const Medium& m : m_media) {
         const HomogeneousMedium* h = homogeneous(m);
         const auto* fog = std::get_if<HeightFogMedium>(&m.model);

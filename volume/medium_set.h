@@ -61,6 +61,9 @@ class MediumSet {
     bool scatters() const;
     /// True if every medium is homogeneous (then `intervals` and `optical_depth` are exact).
     bool all_homogeneous() const { return m_all_homogeneous; }
+    /// True if every medium is homogeneous or height fog: `optical_depth` and `transmittance`
+    /// are then exact for the whole set (closed forms).
+    bool closed_form() const { return m_closed_form; }
     /// True if some medium emits light (a grid with a temperature).
     bool emits() const { return m_emits; }
     /// Emitted radiance per metre at p, sum over the media in `mask` of sigma_a,m(p) L_e,m(p),
@@ -71,10 +74,11 @@ class MediumSet {
     /// Shortest voxel edge of the grid media, metres (kInfinity without grids).
     float smallest_voxel_m() const;
 
-    /// Optical depth tau along the ray over [t_min, t_max], exact; homogeneous media only
-    /// (grids are left out: use the transmittance estimators for them).
+    /// Optical depth tau along the ray over [t_min, t_max], exact; homogeneous media and height
+    /// fog only (grids are left out: use the transmittance estimators for them).
     Rgb optical_depth(const Ray& ray) const;
-    /// Beer-Lambert transmittance exp(-tau) over [t_min, t_max]; homogeneous media only.
+    /// Beer-Lambert transmittance exp(-tau) over [t_min, t_max]; homogeneous media and height
+    /// fog only.
     Rgb transmittance(const Ray& ray) const { return exp_neg(optical_depth(ray)); }
 
     /// Splits [t_min, t_max] at every homogeneous medium's boundary and returns the stretches
@@ -146,6 +150,7 @@ class MediumSet {
     /// Shared by copies of the set (they hold the same media).
     std::shared_ptr<std::array<LightCacheSlot, kMaxCachedLights>> m_light_caches;
     bool m_all_homogeneous = true;
+    bool m_closed_form = true;
     bool m_grey_extinction = true;
     bool m_emits = false;
 };

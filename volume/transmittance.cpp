@@ -216,6 +216,10 @@ Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator est
     ++counters.transmittance_estimates;
     switch (estimator) {
         case Estimator::March: {
+            // The march's limit h -> 0 where every medium has a closed form (homogeneous: the
+            // trapezoid is already exact; height fog: volume/height_fog.h).
+            if (media.closed_form() && !media.all_homogeneous())
+                return media.transmittance(ray);
             thread_local std::vector<MajorantSegment> segments;
             media.majorants(ray, segments);
             if (segments.empty())

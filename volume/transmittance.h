@@ -21,7 +21,8 @@ float march_step_m(const MediumSet& media, const VolumeSettings& settings);
 
 /// An estimate of the transmittance exp(-integral of sigma_t) over [ray.t_min, ray.t_max] per
 /// channel, in [0, 1]. Unbiased for Delta, Ratio, ResidualRatio; March (step `step_m`, offset
-/// jittered per call) is biased by O(step²) where the density is smooth. Never throws.
+/// jittered per call) is biased by O(step²) where the density is smooth, and exact (the closed
+/// form, MediumSet::transmittance) when every medium has one. Never throws.
 Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator estimator,
                            float step_m, Pcg32& rng, VolumeCounters& counters);
 

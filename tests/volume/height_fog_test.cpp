@@ -207,6 +207,27 @@ TEST(HeightFog, TrackersAverageToTheClosedForm) {
     }
 }
 
+// The march estimator of a set whose media all have closed forms is its limit h -> 0: the
+// closed form itself (no step error), also with a homogeneous box overlapping the fog.
+TEST(HeightFog, MarchTransmittanceIsTheClosedForm) {
+    HomogeneousMedium box;
+    box.bounds = Bounds3{Vec3(0, 0, -5), Vec3(10, 10, 5)};
+    box.sigma_s = Rgb(0.03f);
+    const MediumSet media({as_medium(fog(0.01f, 0.05f, 0.0, 6.0)), Medium{"box", box}});
+    EXPECT_TRUE(media.closed_form());
+    EXPECT_FALSE(media.all_homogeneous());
+    Pcg32 rng(1, 2);
+    VolumeCounters counters;
+    const Ray ray{Vec3(-5, 3, 0), direction(0.2), 0.0f, 50.0f};
+    const Rgb exact = media.transmittance(ray);
+    const Rgb march = estimate_transmittance(media, ray, Estimator::March, 2.0f, rng, counters);
+    EXPECT_EQ(march, exact);
+    const double tau =
+        height_fog_column(fog(0.01f, 0.05f, 0.0, 6.0), 3.0, ray.direction.y, 0.0, 50.0) * 0.06 +
+        0.03 * 10.0 / ray.direction.x;
+    EXPECT_NEAR(exact.g, std::exp(-tau), std::exp(-tau) * 1e-5);
+}
+
 // The majorant segments bound the point coefficients: at 64 points of every segment of rays in
 // every direction class (up, down, horizontal, endless, through a box), sigma_min <= sigma_t <=
 // sigma_max, and no two segments overlap. Deterministic.
