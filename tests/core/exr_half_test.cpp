@@ -3,6 +3,7 @@
 // 65504 and count, never infinity), non-finite values still refused, atomic writes.
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "tests/scratch_dir.h"
 
 #include <ImfChannelList.h>
 #include <ImfHeader.h>
@@ -24,29 +25,6 @@ namespace kasumi {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// A fresh empty directory per test, removed afterwards.
-class ScratchDir {
-  public:
-    ScratchDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_path = fs::temp_directory_path() /
-                 ("kasumi_exr_half_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(m_path);
-        fs::create_directories(m_path);
-    }
-    ~ScratchDir() { fs::remove_all(m_path); }
-    std::string file(const std::string& name) const { return (m_path / name).string(); }
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(m_path))
-            names.push_back(e.path().filename().string());
-        return names;
-    }
-
-  private:
-    fs::path m_path;
-};
 
 /// Channel name -> pixel type as OpenEXR itself reads the file's header.
 std::map<std::string, Imf::PixelType> channel_types(const std::string& path) {
@@ -105,7 +83,7 @@ TEST(ExrHalf, ParsesPixelTypes) {
 TEST(ExrHalf, RoundTripIsHalfInTheFileAndRoundsToNearest) {
     // Log-uniform magnitudes over the whole half range (subnormals 2^-24 .. normal 65504), both
     // signs, in a size that is not a multiple of ZIP's 16-line blocks; an AOV that stays float.
-    ScratchDir dir;
+    ScratchDir dir("kasumi_exr_half_");
     const int width = 61, height = 37;
     const size_t n = static_cast<size_t>(width) * height;
     std::mt19937 rng(12345);
@@ -165,7 +143,7 @@ TEST(ExrHalf, RoundTripIsHalfInTheFileAndRoundsToNearest) {
 TEST(ExrHalf, BeyondTheHalfRangeSaturatesAndIsCountedNeverInfinite) {
     // The policy: |v| > 65504 is written as +-65504 (never inf, which plain float->half
     // conversion gives from 65520 on), counted in the report and in the file.
-    ScratchDir dir;
+    ScratchDir dir("kasumi_exr_half_");
     const float big = std::numeric_limits<float>::max();
     std::vector<float> r = {65504.0f, 65505.0f, 65519.0f, 65520.0f, 1.0e9f, -3.0e5f, big, 2.0f};
     std::vector<float> g(r.size(), 0.5f), b(r.size(), 0.25f), a(r.size(), 1.0f);
@@ -196,7 +174,7 @@ TEST(ExrHalf, BeyondTheHalfRangeSaturatesAndIsCountedNeverInfinite) {
 }
 
 TEST(ExrHalf, ImageOverloadWritesOnlyTheBeautyChannelsAsHalf) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_exr_half_");
     Image image(3, 2);
     for (const char* name : {"R", "G", "B", "A", "albedo.R", "depth.Z"}) {
         ImageChannel& channel = image.add_channel(name);
@@ -222,7 +200,7 @@ TEST(ExrHalf, ImageOverloadWritesOnlyTheBeautyChannelsAsHalf) {
 }
 
 TEST(ExrHalf, WritesAtomicallyAndStillRefusesNonFiniteValues) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_exr_half_");
     std::vector<float> r(6, 1.0f), g(6, 2.0f), b(6, 3.0f), a(6, 1.0f);
     std::vector<ExrChannelView> channels = {{"R", r.data(), ExrPixelType::Half},
                                             {"G", g.data(), ExrPixelType::Half},

@@ -2,6 +2,7 @@
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/png_io.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -24,30 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kConfig = std::string(KASUMI_SOURCE_DIR) + "/data/ocio/config.ocio";
-
-/// A fresh empty directory per test, removed afterwards.
-class ScratchDir {
-  public:
-    ScratchDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_path = fs::temp_directory_path() /
-                 ("kasumi_image_io_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(m_path);
-        fs::create_directories(m_path);
-    }
-    ~ScratchDir() { fs::remove_all(m_path); }
-    std::string file(const std::string& name) const { return (m_path / name).string(); }
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(m_path))
-            names.push_back(e.path().filename().string());
-        return names;
-    }
-    const fs::path& path() const { return m_path; }
-
-  private:
-    fs::path m_path;
-};
 
 /// The channels the renderer writes, filled with distinct values (some negative, tiny, large).
 Image make_render_like_image(int width, int height) {
@@ -102,7 +79,7 @@ ErrorKind error_kind_of(F&& f, std::string* message = nullptr) {
 }
 
 TEST(ExrIo, RoundTripsEveryChannelMetadataAndChromaticities) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     const Image image = make_render_like_image(7, 5);
     const std::string path = dir.file("out.exr");
     write_exr(image, path);
@@ -139,7 +116,7 @@ TEST(ExrIo, EveryCompressionIsLossless) {
     // Random bit patterns of finite floats (all exponents, signs, denormals) in a size that is
     // not a multiple of any compression's block (PIZ: 32 scanlines, ZIP: 16): every
     // compression must give back the same bits.
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     Image image = make_render_like_image(37, 45);
     uint32_t state = 12345u;
     for (ImageChannel& channel : image.channels) {
@@ -181,7 +158,7 @@ TEST(ExrIo, EveryCompressionIsLossless) {
 }
 
 TEST(ExrIo, LeavesOnlyTheFinalFileAndReplacesAnOldOne) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     const std::string path = dir.file("frame.0001.exr");
     Image image = make_render_like_image(3, 2);
     write_exr(image, path);
@@ -192,7 +169,7 @@ TEST(ExrIo, LeavesOnlyTheFinalFileAndReplacesAnOldOne) {
 }
 
 TEST(ExrIo, UnwritablePathIsAnOutputErrorNamingItAndLeavesNoFile) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     const std::string path = dir.file("missing_dir/out.exr");
     std::string message;
     EXPECT_EQ(error_kind_of([&] { write_exr(make_render_like_image(2, 2), path); }, &message),
@@ -210,7 +187,7 @@ TEST(ExrIo, UnwritablePathIsAnOutputErrorNamingItAndLeavesNoFile) {
 }
 
 TEST(ExrIo, RefusesNonFiniteValuesNamingChannelAndPixel) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     for (float bad :
          {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
           -std::numeric_limits<float>::infinity()}) {
@@ -228,7 +205,7 @@ TEST(ExrIo, RefusesNonFiniteValuesNamingChannelAndPixel) {
 TEST(ExrIo, BorrowedPlanesWriteTheSameFileAsTheImage) {
     // What the renderer does: the header image carries size and metadata, the pixels are read
     // from planes owned elsewhere (the film), in the order given.
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     const Image image = make_render_like_image(6, 4);
     Image header(image.width, image.height);
     header.metadata = image.metadata;
@@ -266,7 +243,7 @@ TEST(ExrIo, BorrowedPlanesWriteTheSameFileAsTheImage) {
 }
 
 TEST(ExrIo, ReadingAMissingOrCorruptFileIsAnInputErrorNamingIt) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     std::string message;
     const std::string missing = dir.file("nope.exr");
     EXPECT_EQ(error_kind_of([&] { read_exr(missing); }, &message), ErrorKind::Input);
@@ -366,7 +343,7 @@ std::vector<uint8_t> read_bytes(const std::string& path) {
 }
 
 TEST(PngIo, WrittenFileDecodesToTheSameBytes) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     // Gradients, flat areas and noise, so that every filter type wins somewhere.
     const int width = 37, height = 23;
     std::vector<uint8_t> rgb(static_cast<size_t>(width) * height * 3);
@@ -397,7 +374,7 @@ TEST(PngIo, OnePixelImageAndBadArguments) {
 }
 
 TEST(PngIo, UnwritablePathIsAnOutputErrorNamingIt) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     const std::string path = dir.file("no/such/dir/preview.png");
     std::string message;
     EXPECT_EQ(error_kind_of(
@@ -482,7 +459,7 @@ TEST(ColorManagement, RawViewAndExposure) {
 }
 
 TEST(ColorManagement, PreviewPngQuantisesUnToneMappedGrey) {
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     Image image(3, 1);
     for (const char* name : {"R", "G", "B", "A"})
         image.add_channel(name).data = {0.18f, 1.0f, 7.0f};
@@ -506,7 +483,7 @@ TEST(ColorManagement, ErrorsNameTheConfig) {
               ErrorKind::Input);
     EXPECT_NE(message.find(kConfig), std::string::npos) << message;
 
-    ScratchDir dir;
+    ScratchDir dir("kasumi_image_io_");
     const std::string broken = dir.file("broken.ocio");
     std::ofstream(broken) << "ocio_profile_version: 2\ncolorspaces: [oops\n";
     EXPECT_EQ(error_kind_of([&] { list_views(broken, ""); }, &message), ErrorKind::Input);
