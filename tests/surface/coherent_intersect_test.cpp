@@ -4,6 +4,7 @@
 // rays over spheres (Embree user geometry), boxes and quads, with misses and empty intervals,
 // in batch sizes on both sides of the stream's internal batch of 64.
 #include "surface/surface_scene.h"
+#include "tests/surface/test_shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -15,22 +16,6 @@
 
 namespace kasumi {
 namespace {
-
-Shape sphere(Vec3 c, float r) {
-    Shape s;
-    s.geometry = SphereShape{c, r};
-    return s;
-}
-Shape box(Vec3 lo, Vec3 hi) {
-    Shape s;
-    s.geometry = BoxShape{lo, hi};
-    return s;
-}
-Shape quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    Shape s;
-    s.geometry = QuadShape{{a, b, c, d}};
-    return s;
-}
 
 /// The peer benchmark's soft-shadow scene (floor, ball, block) plus a tilted quad and a second
 /// sphere partly inside the block.

@@ -12,6 +12,7 @@
 #include "surface/sphere_light_occluders.h"
 #include "surface/surface_scene.h"
 #include "tests/lights/light_test_util.h"
+#include "tests/surface/test_shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -23,22 +24,6 @@ namespace kasumi {
 namespace {
 
 constexpr uint32_t kNoReceiver = std::numeric_limits<uint32_t>::max();
-
-Shape sphere(Vec3 c, float r) {
-    Shape s;
-    s.geometry = SphereShape{c, r};
-    return s;
-}
-Shape box(Vec3 lo, Vec3 hi) {
-    Shape s;
-    s.geometry = BoxShape{lo, hi};
-    return s;
-}
-Shape quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-    Shape s;
-    s.geometry = QuadShape{{a, b, c, d}};
-    return s;
-}
 
 /// ∫ max(0, n·ω) V(ω) dω over the light's cone by the midpoint rule in (cos θ, φ) (equal solid
 /// angle per cell; test::sphere_quadrature), V from one shadow ray per cell to the light's near
