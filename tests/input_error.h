@@ -1,5 +1,6 @@
 #pragma once
-// Shared by the test folders: the message of the input error a call throws.
+// Shared by the test folders: the message of the input error a call throws, or the kind of
+// any kasumi::Error it throws.
 #include "core/error.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +19,21 @@ std::string input_error(F f) {
         return e.what();
     }
     return "";
+}
+
+/// The kind of the kasumi::Error `f` throws (its message into `message` if given); a test
+/// failure and ErrorKind::Runtime when it throws none.
+template <typename F>
+ErrorKind error_kind_of(F&& f, std::string* message = nullptr) {
+    try {
+        f();
+    } catch (const Error& e) {
+        if (message)
+            *message = e.what();
+        return e.kind();
+    }
+    ADD_FAILURE() << "no kasumi::Error thrown";
+    return ErrorKind::Runtime;
 }
 
 }  // namespace kasumi

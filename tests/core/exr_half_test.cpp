@@ -3,6 +3,7 @@
 // 65504 and count, never infinity), non-finite values still refused, atomic writes.
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "tests/input_error.h"
 #include "tests/scratch_dir.h"
 
 #include <ImfChannelList.h>
@@ -52,19 +53,6 @@ double half_spacing(double v) {
 
 Image header_of(int width, int height) {
     return Image(width, height);
-}
-
-template <typename F>
-ErrorKind error_kind_of(F&& f, std::string* message = nullptr) {
-    try {
-        f();
-    } catch (const Error& e) {
-        if (message)
-            *message = e.what();
-        return e.kind();
-    }
-    ADD_FAILURE() << "no kasumi::Error thrown";
-    return ErrorKind::Runtime;
 }
 
 TEST(ExrHalf, ParsesPixelTypes) {

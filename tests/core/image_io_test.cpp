@@ -2,6 +2,7 @@
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "core/png_io.h"
+#include "tests/input_error.h"
 #include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
@@ -63,19 +64,6 @@ Image make_render_like_image(int width, int height) {
     image.chromaticities =
         Chromaticities{0.7347f, 0.2653f, 0.0f, 1.0f, 0.0001f, -0.077f, 0.32168f, 0.33767f};
     return image;
-}
-
-template <typename F>
-ErrorKind error_kind_of(F&& f, std::string* message = nullptr) {
-    try {
-        f();
-    } catch (const Error& e) {
-        if (message)
-            *message = e.what();
-        return e.kind();
-    }
-    ADD_FAILURE() << "no kasumi::Error thrown";
-    return ErrorKind::Runtime;
 }
 
 TEST(ExrIo, RoundTripsEveryChannelMetadataAndChromaticities) {
