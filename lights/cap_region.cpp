@@ -10,7 +10,9 @@ namespace {
 
 constexpr double kTwoPiD = 2.0 * kPiD;
 
-/// A set of azimuths in [0, 2π]: a union of at most kMaxArcs disjoint closed intervals.
+/// A set of azimuths in [0, 2π]: a union of at most kMaxArcs disjoint closed intervals. The
+/// interval arrays are left uninitialised past m_count (one is built per circle and per shading
+/// point; zeroing them, and a fresh set per intersection, cost more than the arithmetic).
 class ArcSet {
   public:
     static constexpr size_t kMaxArcs = 16;
@@ -28,15 +30,20 @@ class ArcSet {
         if (lo < 0.0)
             lo += kTwoPiD;
         const double hi = lo + 2.0 * half;
-        ArcSet out;
-        out.clear();
-        out.m_overflow = m_overflow;
-        for (size_t k = 0; k < m_count; ++k) {
-            out.add_clipped(m_lo[k], m_hi[k], lo, std::min(hi, kTwoPiD));
-            if (hi > kTwoPiD)
-                out.add_clipped(m_lo[k], m_hi[k], 0.0, hi - kTwoPiD);
+        // One input interval can give two outputs, which could overwrite an input not yet
+        // read: the inputs are copied first.
+        double in_lo[kMaxArcs], in_hi[kMaxArcs];
+        const size_t count = m_count;
+        for (size_t k = 0; k < count; ++k) {
+            in_lo[k] = m_lo[k];
+            in_hi[k] = m_hi[k];
         }
-        *this = out;
+        m_count = 0;
+        for (size_t k = 0; k < count; ++k) {
+            add_clipped(in_lo[k], in_hi[k], lo, std::min(hi, kTwoPiD));
+            if (hi > kTwoPiD)
+                add_clipped(in_lo[k], in_hi[k], 0.0, hi - kTwoPiD);
+        }
     }
 
   private:
@@ -55,7 +62,7 @@ class ArcSet {
             add(lo, hi);
     }
 
-    std::array<double, kMaxArcs> m_lo{}, m_hi{};
+    double m_lo[kMaxArcs], m_hi[kMaxArcs];
     size_t m_count = 0;
     bool m_overflow = false;
 };
