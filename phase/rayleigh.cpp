@@ -10,10 +10,14 @@ double rayleigh_gamma(float rho) {
 
 }  // namespace
 
-double eval_precise(const Rayleigh& p, double mu) {
-    const double gamma = rayleigh_gamma(p.rho);
+double rayleigh_phase(double rho, double mu) {
+    const double gamma = rho / (2.0 - rho);
     return 3.0 / (16.0 * kPiD * (1.0 + 2.0 * gamma)) *
            ((1.0 + 3.0 * gamma) + (1.0 - gamma) * mu * mu);
+}
+
+double eval_precise(const Rayleigh& p, double mu) {
+    return rayleigh_phase(static_cast<double>(p.rho), mu);
 }
 
 float eval(const Rayleigh& p, float mu) {

@@ -11,6 +11,8 @@ struct Rayleigh {
     float rho = 0.0f;
 };
 
+/// p(mu) for depolarisation factor rho, in double precision (the form above).
+double rayleigh_phase(double rho, double mu);
 float eval(const Rayleigh& p, float mu);
 /// p(mu) in double precision; eval() is this value rounded to float.
 double eval_precise(const Rayleigh& p, double mu);

@@ -94,7 +94,8 @@ Rgb shadowed_sun_scattering(const SceneRuntime& scene, const Ray& ray, float t_e
         return Rgb(0.0f);
 
     const double mu = glm::dot(d, sky.sun_direction);
-    const double p_rayleigh = rayleigh_phase(mu);
+    Bands p_rayleigh{};
+    rayleigh_phase_bands(a, mu, p_rayleigh);
     const double p_mie = eval_precise(a.mie_phase, mu);
     const auto altitude = [&](double t) { return a.radius(p + t * d) - a.ground_radius_m; };
     Bands tau{};  // optical depth of the air from lo to the current node
@@ -116,7 +117,7 @@ Rgb shadowed_sun_scattering(const SceneRuntime& scene, const Ray& ray, float t_e
         Bands scattered{};
         for (int b = 0; b < a.bands; ++b) {
             scattered[b] = stratum * std::exp(-tau[b]) *
-                           (c.sigma_s_rayleigh[b] * p_rayleigh + c.sigma_s_mie[b] * p_mie) *
+                           (c.sigma_s_rayleigh[b] * p_rayleigh[b] + c.sigma_s_mie[b] * p_mie) *
                            t_sun[b];
         }
         sum += glm::dvec3(sky.to_rgb(scattered)) * glm::dvec3(hidden[i]);

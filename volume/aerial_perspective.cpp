@@ -66,6 +66,12 @@ AerialPerspective::AerialPerspective(const SkyScene& sky, const SkyLuts& luts,
         out[1] = white.g > 0.0f ? c.g / white.g : 1.0f;
         out[2] = white.b > 0.0f ? c.b / white.b : 1.0f;
     };
+    // The Rayleigh phase of each band as c0 + c2 mu².
+    Bands phase_c0{}, phase_c2{};
+    for (int b = 0; b < nb; ++b) {
+        phase_c0[b] = rayleigh_phase(a, b, 0.0);
+        phase_c2[b] = rayleigh_phase(a, b, 1.0) - phase_c0[b];
+    }
     tbb::parallel_for(0, kWidth * kHeight, [&](int ray) {
         const int x = ray % kWidth, y = ray / kWidth;
         const DVec3 p = m_frustum.origin;
@@ -76,10 +82,10 @@ AerialPerspective::AerialPerspective(const SkyScene& sky, const SkyLuts& luts,
         const bool inside = atmosphere_segment(a, p, d, t_enter, t_exit, ground);
         // Running integrals from the camera, per band: single scattering without phase
         // (Rayleigh, Mie), multiple scattering, optical depth.
-        Bands s_r{}, s_m{}, s_ms{}, tau{}, ts{}, ms{}, t{};
+        Bands s_r{}, s_m{}, s_ms{}, tau{}, ts{}, ms{}, t{}, s_r0{}, s_r2{};
         Froxel& first = m_froxels[static_cast<size_t>(y) * kWidth + x];
         for (int c = 0; c < 3; ++c) {
-            first.rayleigh[c] = first.mie[c] = first.multiple[c] = 0.0f;
+            first.rayleigh[c] = first.rayleigh_mu2[c] = first.mie[c] = first.multiple[c] = 0.0f;
             first.transmittance[c] = 1.0f;
         }
         for (int k = 1; k <= kSlices; ++k) {
@@ -112,10 +118,14 @@ AerialPerspective::AerialPerspective(const SkyScene& sky, const SkyLuts& luts,
                     }
                 }
             }
-            for (int b = 0; b < nb; ++b)
+            for (int b = 0; b < nb; ++b) {
                 t[b] = std::exp(-tau[b]);
+                s_r0[b] = phase_c0[b] * s_r[b];
+                s_r2[b] = phase_c2[b] * s_r[b];
+            }
             Froxel& f = m_froxels[(static_cast<size_t>(k) * kHeight + y) * kWidth + x];
-            to_rgb3(s_r, f.rayleigh);
+            to_rgb3(s_r0, f.rayleigh);
+            to_rgb3(s_r2, f.rayleigh_mu2);
             to_rgb3(s_m, f.mie);
             to_rgb3(s_ms, f.multiple);
             transmittance_rgb3(t, f.transmittance);
@@ -141,23 +151,25 @@ bool AerialPerspective::lookup(const DVec3& d, double t, Rgb& radiance, Rgb& tra
     const int k0 = std::min(static_cast<int>(std::sqrt(tc / kDepthM) * kSlices), kSlices - 1);
     const double ta = slice_distance(k0), tb = slice_distance(k0 + 1);
     const float wz = static_cast<float>(std::clamp((tc - ta) / (tb - ta), 0.0, 1.0));
-    float r[3] = {0, 0, 0}, m[3] = {0, 0, 0}, ms[3] = {0, 0, 0}, tr[3] = {0, 0, 0};
+    float r[3] = {0, 0, 0}, r2[3] = {0, 0, 0}, m[3] = {0, 0, 0}, ms[3] = {0, 0, 0};
+    float tr[3] = {0, 0, 0};
     for (int corner = 0; corner < 8; ++corner) {
         const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
         const float w = (dx ? wx : 1.0f - wx) * (dy ? wy : 1.0f - wy) * (dz ? wz : 1.0f - wz);
         const Froxel& f = at(k0 + dz, y0 + dy, x0 + dx);
         for (int c = 0; c < 3; ++c) {
             r[c] += w * f.rayleigh[c];
+            r2[c] += w * f.rayleigh_mu2[c];
             m[c] += w * f.mie[c];
             ms[c] += w * f.multiple[c];
             tr[c] += w * f.transmittance[c];
         }
     }
     const double mu = glm::dot(d, m_sun_direction);
-    const auto p_r = static_cast<float>(rayleigh_phase(mu));
+    const auto mu2 = static_cast<float>(mu * mu);
     const auto p_m = static_cast<float>(eval_precise(m_mie_phase, mu));
-    radiance = Rgb(p_r * r[0] + p_m * m[0] + ms[0], p_r * r[1] + p_m * m[1] + ms[1],
-                   p_r * r[2] + p_m * m[2] + ms[2]);
+    radiance = Rgb(r[0] + mu2 * r2[0] + p_m * m[0] + ms[0], r[1] + mu2 * r2[1] + p_m * m[1] + ms[1],
+                   r[2] + mu2 * r2[2] + p_m * m[2] + ms[2]);
     transmittance = Rgb(tr[0], tr[1], tr[2]);
     return true;
 }

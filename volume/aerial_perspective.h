@@ -70,9 +70,12 @@ class AerialPerspective {
 
   private:
     /// Per froxel: single scattering by Rayleigh and by Mie without their phases, multiple
-    /// scattering (isotropic, phase included), transmittance; RGB each.
+    /// scattering (isotropic, phase included), transmittance; RGB each. The Rayleigh phase of
+    /// band b is c0_b + c2_b mu² (its depolarisation may depend on the wavelength), so its
+    /// light is kept as the two sums over bands weighted by c0_b and by c2_b:
+    /// radiance = rayleigh + mu² rayleigh_mu2, exact per band.
     struct Froxel {
-        float rayleigh[3], mie[3], multiple[3], transmittance[3];
+        float rayleigh[3], rayleigh_mu2[3], mie[3], multiple[3], transmittance[3];
     };
     const Froxel& at(int slice, int y, int x) const {
         return m_froxels[(static_cast<size_t>(slice) * kHeight + y) * kWidth + x];

@@ -62,6 +62,29 @@ AtmosphereCoefficients atmosphere_coefficients(const Atmosphere& a, double h) {
     return c;
 }
 
+Rayleigh rayleigh_sampling_phase(const Atmosphere& a) {
+    double sum = 0.0;
+    for (int i = 0; i < a.bands; ++i)
+        sum += a.rayleigh_depolarization[i];
+    return Rayleigh{static_cast<float>(a.bands > 0 ? sum / a.bands : 0.0)};
+}
+
+double king_factor_standard_air(double lambda_nm) {
+    const double lambda_um = lambda_nm * 1e-3;
+    const double s2 = 1.0 / (lambda_um * lambda_um);  // wavenumber squared, 1/µm²
+    // Bates 1984 King factors of N2 and O2 (Bodhaine eqs. 24, 25); Ar 1, CO2 1.15 (eqs. 26,
+    // 27); weighted by volume mixing ratio (eq. 23, CO2 at 360 ppm).
+    const double f_n2 = 1.034 + 3.17e-4 * s2;
+    const double f_o2 = 1.096 + 1.385e-3 * s2 + 1.448e-4 * s2 * s2;
+    return (78.084 * f_n2 + 20.946 * f_o2 + 0.934 * 1.0 + 0.036 * 1.15) /
+           (78.084 + 20.946 + 0.934 + 0.036);
+}
+
+double rayleigh_depolarization_standard_air(double lambda_nm) {
+    const double f = king_factor_standard_air(lambda_nm);
+    return 6.0 * (f - 1.0) / (3.0 + 7.0 * f);
+}
+
 double rayleigh_cross_section_m2(double lambda_nm) {
     const double lambda_um = lambda_nm * 1e-3;
     const double s2 = 1.0 / (lambda_um * lambda_um);  // wavenumber squared, 1/µm²
@@ -69,12 +92,7 @@ double rayleigh_cross_section_m2(double lambda_nm) {
     const double n_minus_1 =
         (8060.51 + 2480990.0 / (132.274 - s2) + 17455.7 / (39.32957 - s2)) * 1e-8;
     const double n = 1.0 + n_minus_1;
-    // Bates 1984 King factors of N2 and O2; Ar 1, CO2 1.15; weighted by volume mixing ratio
-    // (Bodhaine et al. 1999, eq. 23, CO2 at 360 ppm).
-    const double f_n2 = 1.034 + 3.17e-4 * s2;
-    const double f_o2 = 1.096 + 1.385e-3 * s2 + 1.448e-4 * s2 * s2;
-    const double f_king = (78.084 * f_n2 + 20.946 * f_o2 + 0.934 * 1.0 + 0.036 * 1.15) /
-                          (78.084 + 20.946 + 0.934 + 0.036);
+    const double f_king = king_factor_standard_air(lambda_nm);
     constexpr double kNumberDensity = 2.54743e25;  // m⁻³, Bucholtz 1995 at 288.15 K, 1013.25 hPa
     const double lambda_m = lambda_nm * 1e-9;
     const double n2 = n * n;

@@ -8,6 +8,7 @@
 /// planet centre at (0, -ground_radius_m, 0).
 #include "core/math.h"
 #include "phase/phase_function.h"
+#include "phase/rayleigh.h"
 
 #include <array>
 #include <vector>
@@ -71,6 +72,9 @@ struct Atmosphere {
     AtmosphereSpecies rayleigh;
     AtmosphereSpecies mie;
     AtmosphereSpecies ozone;  ///< absorption only
+    /// Depolarisation factor rho of the Rayleigh phase per band (rayleigh_phase); standard
+    /// air's, consistent with the King factor of its cross section, unless the scene sets it.
+    Bands rayleigh_depolarization{};
     PhaseFunction mie_phase = CornetteShanks{0.8f};
 
     DVec3 center() const { return DVec3(0.0, -ground_radius_m, 0.0); }
@@ -88,10 +92,31 @@ struct AtmosphereCoefficients {
 /// Coefficients at altitude h above the ground (metres).
 AtmosphereCoefficients atmosphere_coefficients(const Atmosphere& a, double h);
 
-/// Rayleigh phase function without depolarisation, 3 / (16 pi) (1 + mu²), per steradian.
-inline double rayleigh_phase(double mu) {
-    return 3.0 / (16.0 * kPiD) * (1.0 + mu * mu);
+/// Rayleigh phase function of band `band`, per steradian: Chandrasekhar's form with the band's
+/// depolarisation factor rho (Bucholtz 1995, eq. 12; phase/rayleigh.h),
+/// 3 / (16 pi (1 + 2 gamma)) ((1 + 3 gamma) + (1 - gamma) mu²), gamma = rho / (2 - rho);
+/// rho = 0 gives 3 / (16 pi) (1 + mu²).
+inline double rayleigh_phase(const Atmosphere& a, int band, double mu) {
+    return rayleigh_phase(a.rayleigh_depolarization[band], mu);
 }
+/// The Rayleigh phase of every band at scattering cosine mu.
+inline void rayleigh_phase_bands(const Atmosphere& a, double mu, Bands& out) {
+    for (int i = 0; i < a.bands; ++i)
+        out[i] = rayleigh_phase(a, i, mu);
+}
+/// The one Rayleigh phase function directions are drawn from where every band shares a sample
+/// (the reference's Monte Carlo orders): the band-mean depolarisation. Each band then weights
+/// the sample by its own phase over this pdf (unbiased: the pdf is positive everywhere).
+Rayleigh rayleigh_sampling_phase(const Atmosphere& a);
+
+/// King correction factor of standard air F_K = (6 + 3 rho) / (6 - 7 rho) at lambda_nm: the
+/// factors of N2 and O2 of Bates 1984 (Planet. Space Sci. 32, 785), Ar 1, CO2 1.15, weighted
+/// by volume mixing ratio (Bodhaine et al. 1999, J. Atmos. Oceanic Technol. 16, 1854, eqs.
+/// 23-27; CO2 at 360 ppm).
+double king_factor_standard_air(double lambda_nm);
+/// Depolarisation factor of standard air at lambda_nm, the rho of that King factor:
+/// rho = 6 (F_K - 1) / (3 + 7 F_K): 0.0305 at 360 nm, 0.0283 at 550 nm, 0.0276 at 830 nm.
+double rayleigh_depolarization_standard_air(double lambda_nm);
 
 /// Rayleigh scattering coefficient of standard air (288.15 K, 1013.25 hPa) at lambda_nm, 1/m:
 /// sigma = 24 pi³ (n² - 1)² / (lambda⁴ N² (n² + 2)²) F_K N (Bucholtz 1995, Appl. Opt. 34(15)

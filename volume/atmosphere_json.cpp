@@ -122,6 +122,8 @@ Atmosphere default_earth_atmosphere(const std::vector<double>& nm,
     a.wavelengths_nm = nm;
     fill_rgb(a.rayleigh.scattering, kRayleighDefault, nm, rgb_nm);
     a.rayleigh.profile = DensityProfile::exponential(8000.0);
+    for (size_t i = 0; i < nm.size(); ++i)
+        a.rayleigh_depolarization[i] = rayleigh_depolarization_standard_air(nm[i]);
     for (size_t i = 0; i < nm.size(); ++i) {
         a.mie.scattering[i] = kMieScatteringDefault;
         a.mie.absorption[i] = kMieExtinctionDefault - kMieScatteringDefault;
@@ -167,6 +169,19 @@ Atmosphere parse_atmosphere(const JsonNode& node, const std::vector<double>& nm,
                 a.rayleigh.profile = DensityProfile::us_standard_1976();
             } else if (name != "exponential") {
                 p->fail("expected \"exponential\" or \"us_standard_1976\"");
+            }
+        }
+        // Depolarisation factor of the phase: "auto" (default) standard air's at each
+        // wavelength, the rho of the King factor of "scattering": "auto"; or one number.
+        if (const auto rho = r.optional("depolarization")) {
+            if (!(rho->is_string() && rho->as_string() == "auto")) {
+                if (!rho->is_number())
+                    rho->fail("expected \"auto\" or a number in [0, 0.999]");
+                const double value = rho->as_double();
+                if (!(value >= 0.0 && value <= 0.999))
+                    rho->fail("must be in [0, 0.999]");
+                for (size_t i = 0; i < nm.size(); ++i)
+                    a.rayleigh_depolarization[i] = value;
             }
         }
         r.finish();

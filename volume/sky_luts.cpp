@@ -216,6 +216,7 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
             const double mu_s = -1.0 + 2.0 * i / (W - 1);
             const double sin_s = std::sqrt(std::max(0.0, 1.0 - mu_s * mu_s));
             std::vector<double> g(nb, 0.0), e(nb, 0.0), l(nb, 0.0), ts(nb, 0.0);
+            Bands p_r{};
             for (int c = 0; c < kDirCos; ++c) {
                 const DirRay& ray = rays[static_cast<size_t>(j * kDirCos + c)];
                 // Azimuths phi and 2 pi - phi see the same sun cosines and scattering angles:
@@ -226,14 +227,16 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
                     // Scattering angle of the first order: sun light (propagating along -s)
                     // turned toward x (along -d): cos = s . d.
                     const double nu = sin_s * ray.sin_t * cos_phi + mu_s * ray.cos_t;
-                    const double p_r = rayleigh_phase(nu), p_m = eval_precise(a.mie_phase, nu);
+                    if (order == 1)
+                        rayleigh_phase_bands(a, nu, p_r);
+                    const double p_m = eval_precise(a.mie_phase, nu);
                     for (size_t n = 0; n < ray.nodes.size(); ++n) {
                         const Node& node = ray.nodes[n];
                         const double mu_y = sin_s * node.a * cos_phi + mu_s * node.b;
                         if (order == 1) {
                             sun_t(node.r, mu_y, ts.data());
                             for (size_t b = 0; b < nb; ++b)
-                                l[b] += (ray.w_rayleigh[n * nb + b] * p_r +
+                                l[b] += (ray.w_rayleigh[n * nb + b] * p_r[b] +
                                          ray.w_mie[n * nb + b] * p_m) *
                                         ts[b];
                         } else {
@@ -355,7 +358,9 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
     if (!(t_end > t_enter))
         return;
     const double mu = glm::dot(d, sky.sun_direction);
-    const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
+    Bands p_r{};
+    rayleigh_phase_bands(a, mu, p_r);
+    const double p_m = eval_precise(a.mie_phase, mu);
     Bands tau{}, ts, ms;
     if (t_end - t_enter < kShortSegmentM && !(ground && t_max >= t_exit)) {
         // Short segment (aerial perspective over a scene) in one piece by Simpson's rule on
@@ -412,7 +417,7 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
                 const double multiple = middle_light ? ms[i] : ms_end[k / 2][i];
                 const double s_r = d_r[k] * a.rayleigh.scattering[i];
                 const double s_m = d_m[k] * a.mie.scattering[i];
-                source[k] = (s_r * p_r + s_m * p_m) * t_sun + (s_r + s_m) * multiple;
+                source[k] = (s_r * p_r[i] + s_m * p_m) * t_sun + (s_r + s_m) * multiple;
             }
             const double s0 = sigma_t(0, i), sm = sigma_t(1, i), s1 = sigma_t(2, i);
             const double tau_i = length * (s0 + 4.0 * sm + s1) / 6.0;
@@ -439,7 +444,7 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
         for (int i = 0; i < n; ++i) {
             const double tr = std::exp(-(tau[i] + 0.5 * c.sigma_t[i] * dt));
             radiance[i] += tr * dt *
-                           ((c.sigma_s_rayleigh[i] * p_r + c.sigma_s_mie[i] * p_m) * ts[i] +
+                           ((c.sigma_s_rayleigh[i] * p_r[i] + c.sigma_s_mie[i] * p_m) * ts[i] +
                             (c.sigma_s_rayleigh[i] + c.sigma_s_mie[i]) * ms[i]);
             tau[i] += c.sigma_t[i] * dt;
         }

@@ -97,7 +97,8 @@ SkySample reference_sky(const SkyScene& sky, const DVec3& p, const DVec3& d, dou
     const bool reaches_end = t_max >= t_exit;
     const double t_end = std::min(t_exit, t_max);
     const double mu_sun = glm::dot(d, sky.sun_direction);
-    const double p_r_sun = rayleigh_phase(mu_sun);
+    Bands p_r_sun{};  // per band: the depolarisation may depend on the wavelength
+    rayleigh_phase_bands(a, mu_sun, p_r_sun);
     const double p_m_sun = eval_precise(a.mie_phase, mu_sun);
 
     // Reservoir of one scattering vertex for the higher orders, drawn in proportion to the
@@ -120,7 +121,7 @@ SkySample reference_sky(const SkyScene& sky, const DVec3& p, const DVec3& d, dou
         }
         const Bands t_sun = sun_transmittance(sky, x, sun_steps);
         for (int i = 0; i < n; ++i)
-            out.radiance[i] += (weight_r[i] * p_r_sun + weight_m[i] * p_m_sun) * t_sun[i];
+            out.radiance[i] += (weight_r[i] * p_r_sun[i] + weight_m[i] * p_m_sun) * t_sun[i];
         if (continue_path) {
             const double w = mean_of(weight_r, n) + mean_of(weight_m, n);
             reservoir_sum += w;
@@ -135,24 +136,28 @@ SkySample reference_sky(const SkyScene& sky, const DVec3& p, const DVec3& d, dou
     for (int i = 0; i < n; ++i)
         out.transmittance[i] = std::exp(-tau[i]);
 
-    // Higher orders from the chosen vertex: one direction from the phase mixture.
+    // Higher orders from the chosen vertex: one direction from the phase mixture (Rayleigh
+    // with the bands' mean depolarisation; each band weights by its own phase over the pdf).
     if (continue_path && chosen_weight > 0.0) {
         const double pick_prob = chosen_weight / reservoir_sum;
         const double mean_r = mean_of(chosen_t_r, n), mean_m = mean_of(chosen_t_m, n);
         const double c_m = mean_m / (mean_r + mean_m);
         const Vec3 wo = Vec3(-d);
+        const Rayleigh sampling_rayleigh = rayleigh_sampling_phase(a);
         const Vec2 u = rng.next_vec2();
         const PhaseSample s =
-            rng.next_float() < c_m ? sample(a.mie_phase, wo, u) : sample(Rayleigh{0.0f}, wo, u);
+            rng.next_float() < c_m ? sample(a.mie_phase, wo, u) : sample(sampling_rayleigh, wo, u);
         const DVec3 wi = glm::normalize(DVec3(s.wi));
         const double mu = glm::dot(d, wi);
-        const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
-        const double pdf = (1.0 - c_m) * p_r + c_m * p_m;
+        Bands p_r{};
+        rayleigh_phase_bands(a, mu, p_r);
+        const double p_m = eval_precise(a.mie_phase, mu);
+        const double pdf = (1.0 - c_m) * eval_precise(sampling_rayleigh, mu) + c_m * p_m;
         if (pdf > 0.0) {
             const SkySample in =
                 reference_sky(sky, p + chosen_t * d, wi, 1e30, false, orders - 1, rng);
             for (int i = 0; i < n; ++i) {
-                out.radiance[i] += (chosen_t_r[i] * p_r + chosen_t_m[i] * p_m) * in.radiance[i] /
+                out.radiance[i] += (chosen_t_r[i] * p_r[i] + chosen_t_m[i] * p_m) * in.radiance[i] /
                                    (pick_prob * pdf);
             }
         }

@@ -72,7 +72,9 @@ Rgb single_scattering(const SkyScene& sky, double a, double b) {
     const Atmosphere& atm = sky.atmosphere;
     const AtmosphereCoefficients c = atmosphere_coefficients(atm, 1.0);
     const double mu = glm::dot(DVec3(kAlong), sky.sun_direction);
-    const double p_r = rayleigh_phase(mu), p_m = eval_precise(atm.mie_phase, mu);
+    Bands p_r{};
+    rayleigh_phase_bands(atm, mu, p_r);
+    const double p_m = eval_precise(atm.mie_phase, mu);
     constexpr int n = 400;
     const double h = (b - a) / n;
     Bands sum{};
@@ -82,7 +84,7 @@ Rgb single_scattering(const SkyScene& sky, double a, double b) {
         const Bands t_sun = sun_transmittance(sky, DVec3(s, 1.0, 0.0), 256);
         for (int i = 0; i < atm.bands; ++i) {
             sum[i] += w * h / 3.0 * std::exp(-c.sigma_t[i] * s) *
-                      (c.sigma_s_rayleigh[i] * p_r + c.sigma_s_mie[i] * p_m) * t_sun[i];
+                      (c.sigma_s_rayleigh[i] * p_r[i] + c.sigma_s_mie[i] * p_m) * t_sun[i];
         }
     }
     return sky.to_rgb(sum);

@@ -218,7 +218,9 @@ TEST(PublishedHeightFog, ShortSegmentsIntegrateTheExponentialProfile) {
                        std::cos(z);
             };
             const double mu = glm::dot(d, sky->sun_direction);
-            const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
+            Bands p_r{};
+            rayleigh_phase_bands(a, mu, p_r);
+            const double p_m = eval_precise(a.mie_phase, mu);
             const int nodes = 4096;
             const double dt = length / nodes;
             Bands fine{}, tau{}, ts{}, ms{};
@@ -231,7 +233,7 @@ TEST(PublishedHeightFog, ShortSegmentsIntegrateTheExponentialProfile) {
                 luts.multiple_scattering(r, glm::dot(up / r, sky->sun_direction), ms);
                 for (int b = 0; b < 3; ++b) {
                     fine[b] += std::exp(-(tau[b] + 0.5 * c.sigma_t[b] * dt)) * dt *
-                               ((c.sigma_s_rayleigh[b] * p_r + c.sigma_s_mie[b] * p_m) * ts[b] +
+                               ((c.sigma_s_rayleigh[b] * p_r[b] + c.sigma_s_mie[b] * p_m) * ts[b] +
                                 (c.sigma_s_rayleigh[b] + c.sigma_s_mie[b]) * ms[b]);
                     tau[b] += c.sigma_t[b] * dt;
                 }

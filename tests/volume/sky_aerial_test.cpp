@@ -54,7 +54,9 @@ Air fine_air(const SkyScene& sky, const SkyLuts& luts, const DVec3& p, const DVe
     if (!(t_end > t_enter))
         return out;
     const double mu = glm::dot(d, sky.sun_direction);
-    const double p_r = rayleigh_phase(mu), p_m = eval_precise(a.mie_phase, mu);
+    Bands p_r{};
+    rayleigh_phase_bands(a, mu, p_r);
+    const double p_m = eval_precise(a.mie_phase, mu);
     Bands l{}, tau{}, ts{}, ms{}, t{};
     const double dt = (t_end - t_enter) / nodes;
     for (int i = 0; i < nodes; ++i) {
@@ -66,7 +68,7 @@ Air fine_air(const SkyScene& sky, const SkyLuts& luts, const DVec3& p, const DVe
         luts.multiple_scattering(r, glm::dot(up / r, sky.sun_direction), ms);
         for (int b = 0; b < a.bands; ++b) {
             const double w = std::exp(-(tau[b] + 0.5 * c.sigma_t[b] * dt)) * dt;
-            l[b] += w * ((c.sigma_s_rayleigh[b] * p_r + c.sigma_s_mie[b] * p_m) * ts[b] +
+            l[b] += w * ((c.sigma_s_rayleigh[b] * p_r[b] + c.sigma_s_mie[b] * p_m) * ts[b] +
                          (c.sigma_s_rayleigh[b] + c.sigma_s_mie[b]) * ms[b]);
             tau[b] += c.sigma_t[b] * dt;
         }

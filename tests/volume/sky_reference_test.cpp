@@ -35,16 +35,26 @@ double zenith_tau(const Atmosphere& a, int band) {
     return a.rayleigh.scattering[band] * h * -std::expm1(-(a.top_radius_m - a.ground_radius_m) / h);
 }
 
+/// The Rayleigh phase at mu = ±1 of band i: 3 (1 + gamma) / (8 pi (1 + 2 gamma)),
+/// gamma = rho / (2 - rho) (Bucholtz 1995, eq. 12 at Theta = 0).
+double forward_phase(const Atmosphere& a, int band) {
+    const double rho = a.rayleigh_depolarization[band];
+    const double gamma = rho / (2.0 - rho);
+    return 3.0 * (1.0 + gamma) / (8.0 * kPiD * (1.0 + 2.0 * gamma));
+}
+
 TEST(ReferenceSky, SingleScatteringLookingUpAtTheZenithSun) {
     // Sun at the zenith, looking straight up from the ground, Rayleigh only: the view and sun
     // paths together always cross the whole column, so T_view T_sun = exp(-tau) at every
-    // height and L = p(mu = 1) tau exp(-tau) per unit irradiance, p(1) = 3 / (8 pi).
+    // height and L = p(mu = 1) tau exp(-tau) per unit irradiance.
     const auto sky = make_sky(90.0, 1, true);
     Pcg32 rng(1, 2);
     const SkySample s = reference_sky(*sky, DVec3(0.0), DVec3(0.0, 1.0, 0.0), 1e30, false, 1, rng);
     for (int i = 0; i < 3; ++i) {
         const double tau = zenith_tau(sky->atmosphere, i);
-        const double expected = 3.0 / (8.0 * kPiD) * tau * std::exp(-tau);
+        // p(±1) = 3 (1 + gamma) / (8 pi (1 + 2 gamma)) with the band's depolarisation
+        // (Bucholtz 1995, eq. 12); 3 / (8 pi) without.
+        const double expected = forward_phase(sky->atmosphere, i) * tau * std::exp(-tau);
         EXPECT_NEAR(s.radiance[i] / expected, 1.0, 1e-5) << "band " << i;
         EXPECT_NEAR(s.transmittance[i], std::exp(-tau), 1e-7);  // midpoint rule, 2000 nodes
     }
@@ -52,7 +62,7 @@ TEST(ReferenceSky, SingleScatteringLookingUpAtTheZenithSun) {
 
 TEST(ReferenceSky, SingleScatteringLookingDownFromTheTop) {
     // From the top looking straight down, sun at the zenith, black ground, Rayleigh only:
-    // with x = tau(h, top), L = p(-1) int_0^tau e^{-2x} dx = 3/(8 pi) (1 - e^{-2 tau}) / 2.
+    // with x = tau(h, top), L = p(-1) int_0^tau e^{-2x} dx = p(-1) (1 - e^{-2 tau}) / 2.
     const auto sky = make_sky(90.0, 1, true);
     Pcg32 rng(1, 2);
     const double top = sky->atmosphere.top_radius_m - sky->atmosphere.ground_radius_m;
@@ -60,7 +70,7 @@ TEST(ReferenceSky, SingleScatteringLookingDownFromTheTop) {
                                       1e30, false, 1, rng);
     for (int i = 0; i < 3; ++i) {
         const double tau = zenith_tau(sky->atmosphere, i);
-        const double expected = 3.0 / (8.0 * kPiD) * 0.5 * -std::expm1(-2.0 * tau);
+        const double expected = forward_phase(sky->atmosphere, i) * 0.5 * -std::expm1(-2.0 * tau);
         EXPECT_NEAR(s.radiance[i] / expected, 1.0, 1e-5) << "band " << i;
     }
 }
