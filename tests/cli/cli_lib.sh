@@ -20,3 +20,14 @@ expect_exit() {
     fail "kasumi $* stderr lacks /$pattern/: $(head -c 600 "$work/stderr")"
   fi
 }
+
+# finish WHAT: the last line of a script: the count of failed checks and exit 1, or "WHAT: all
+# checks passed" and exit 0.
+finish() {
+  if [ "$failures" -gt 0 ]; then
+    echo "$1: $failures check(s) failed"
+    exit 1
+  fi
+  echo "$1: all checks passed"
+  exit 0
+}

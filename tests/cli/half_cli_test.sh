@@ -9,33 +9,9 @@ kasumi="$1"
 src="$2"
 source "$(dirname "$0")/cli_lib.sh"
 
-# exr_types FILE: "name:type,..." sorted by name (EXR chlist pixel types: 0 UINT, 1 HALF,
-# 2 FLOAT), then ";" and the kasumi/half/saturated attribute ("-" if absent).
-exr_types() {
-  python3 - "$1" <<'PY'
-import struct, sys
-d = open(sys.argv[1], "rb").read()
-assert d[:4] == b"\x76\x2f\x31\x01", "not an EXR"
-p, chans, saturated = 8, [], "-"
-names = {0: "uint", 1: "half", 2: "float"}
-while d[p] != 0:
-    name_end = d.index(b"\0", p); name = d[p:name_end]
-    type_end = d.index(b"\0", name_end + 1)
-    (size,) = struct.unpack("<i", d[type_end + 1:type_end + 5])
-    value = d[type_end + 5:type_end + 5 + size]
-    if name == b"channels":
-        q = 0
-        while value[q] != 0:
-            e = value.index(b"\0", q)
-            (t,) = struct.unpack("<i", value[e + 1:e + 5])
-            chans.append("%s:%s" % (value[q:e].decode(), names[t]))
-            q = e + 1 + 16
-    elif name == b"kasumi/half/saturated":
-        saturated = value.decode()
-    p = type_end + 5 + size
-print(",".join(sorted(chans)) + ";" + saturated)
-PY
-}
+# exr_types FILE: "name:type,..." sorted (EXR chlist pixel types uint, half, float), then ";"
+# and the kasumi/half/saturated attribute ("-" if absent).
+exr_types() { python3 "$(dirname "$0")/exr_header.py" "$1" channel-types attr:kasumi/half/saturated; }
 
 # 4x3 pixels, no surface: every camera ray sees the background, 1e6 cd/m2 (the sun's disc is
 # ~1.6e9): 12 pixels x R, G, B beyond the half range; A is 0 (no hit).
@@ -76,8 +52,4 @@ expect_exit 3 "/film/pixel_type" -- render "$work/bright.json" -o "$work/bad.exr
   --set /film/pixel_type=16
 [ -e "$work/bad.exr" ] && fail "a rejected render wrote an EXR"
 
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "half cli: all checks passed"
+finish "half cli"

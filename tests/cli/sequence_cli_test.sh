@@ -160,8 +160,4 @@ FRAMES_PER_TASK=10 SBATCH="$work/sbatch" SBATCH_LOG="$work/sbatch.log" \
   bash "$slurm/submit_sequence.sh" "$scene" 0-239 "$work/farm/fog.####.exr" >/dev/null
 grep -q -- "--array=0-23 " "$work/sbatch.log" || fail "chunked array: $(cat "$work/sbatch.log")"
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures sequence CLI check(s) failed"
-  exit 1
-fi
-echo "all sequence CLI checks passed"
+finish "sequence cli"

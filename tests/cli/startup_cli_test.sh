@@ -71,27 +71,8 @@ echo "not a library" >"$work/fake.so"
 KASUMI_VDB_DIRECT=0 KASUMI_VDB_MODULE="$work/fake.so" expect_exit 1 "OpenVDB module.*fake.so \(" -- \
   check "$work/cloud.json"
 
-# exr_channels FILE: the channel names of an EXR header's chlist attribute, comma-separated
-# (OpenEXR file layout: magic, version, then attributes name\0 type\0 int32 size, value).
-exr_channels() {
-  python3 - "$1" <<'PY'
-import struct, sys
-d = open(sys.argv[1], "rb").read()
-assert d[:4] == b"\x76\x2f\x31\x01", "not an EXR"
-p = 8
-while d[p] != 0:
-    name_end = d.index(b"\0", p); name = d[p:name_end]
-    type_end = d.index(b"\0", name_end + 1)
-    (size,) = struct.unpack("<i", d[type_end + 1:type_end + 5])
-    value = d[type_end + 5:type_end + 5 + size]
-    if name == b"channels":
-        names, q = [], 0
-        while value[q] != 0:
-            e = value.index(b"\0", q); names.append(value[q:e].decode()); q = e + 1 + 16
-        print(",".join(names)); break
-    p = type_end + 5 + size
-PY
-}
+# exr_channels FILE: the channel names of an EXR header's chlist attribute, comma-separated.
+exr_channels() { python3 "$(dirname "$0")/exr_header.py" "$1" channels; }
 expect_exit 0 "" -- render "$work/fog.json" -o "$work/none.exr" --no-preview -q --aovs none
 [ "$(exr_channels "$work/none.exr")" = "A,B,G,R" ] || fail "--aovs none: channels $(exr_channels "$work/none.exr")"
 expect_exit 0 "" -- render "$work/fog.json" -o "$work/all.exr" --no-preview -q
@@ -101,8 +82,4 @@ expect_exit 0 "" -- render "$work/fog.json" -o "$work/tv.exr" --no-preview -q --
 [ "$(exr_channels "$work/tv.exr")" = "A,B,G,R,depth.Z,transmittance.B,transmittance.G,transmittance.R" ] ||
   fail "--aovs transmittance,depth: channels $(exr_channels "$work/tv.exr")"
 
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "startup cli: all checks passed"
+finish "startup cli"

@@ -108,8 +108,4 @@ grep -q "time build/media" "$work/stderr" || fail "render -v lacks \"time build/
 # The EXR writer adds the "kasumi/" prefix once; callers must not add it again.
 grep -aq "kasumi/kasumi/" "$work/v.exr" && fail "EXR metadata keys carry the prefix twice"
 
-if [ "$failures" -ne 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "study CLI: all checks passed"
+finish "study cli"

@@ -66,8 +66,4 @@ expect_exit 2 "--to" -- probe transmittance "$work/cloud.json" --from 0,0,0 --to
 # The committed scene checks on a fresh clone.
 expect_exit 0 "" -- check "$src/data/scenes/cloud.json"
 
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)"
-  exit 1
-fi
-echo "vdb cli: all checks passed"
+finish "vdb cli"

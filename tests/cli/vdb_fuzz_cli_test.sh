@@ -109,8 +109,4 @@ for ((at = 0; at + 4 <= size; at += 2 * stride + 1)); do
   run_mutant "int32 -2^31 at $at"
 done
 
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s) in $runs mutants"
-  exit 1
-fi
-echo "vdb fuzz cli: $runs mutants of a $size-byte file, all exited 0 or 3"
+finish "vdb fuzz cli ($runs mutants of a $size-byte file, each to exit 0 or 3)"
