@@ -57,26 +57,20 @@ SIGMA_S_PER_M = 0.1  # per unit density
 SIGMA_A_PER_M = 0.002
 
 
+def march_with_light_cache(step_voxels):
+    """The marched single-scattering configuration at a step of step_voxels voxels."""
+    return ("march %d voxels + light cache" % step_voxels,
+            {"integrator": "single", "estimator": "march", "step_voxels": float(step_voxels),
+             "light_cache": True},
+            False)
+
+
 # kasumi configurations timed against vdb_render (name, render.volume settings, unbiased?).
 CONFIGS = [
     ("residual-ratio", {"integrator": "single", "estimator": "residual-ratio"}, True),
     ("residual-ratio + light cache",
      {"integrator": "single", "estimator": "residual-ratio", "light_cache": True}, False),
-    ("march 2 voxels + light cache",
-     {"integrator": "single", "estimator": "march", "step_voxels": 2.0, "light_cache": True},
-     False),
-    ("march 4 voxels + light cache",
-     {"integrator": "single", "estimator": "march", "step_voxels": 4.0, "light_cache": True},
-     False),
-    ("march 8 voxels + light cache",
-     {"integrator": "single", "estimator": "march", "step_voxels": 8.0, "light_cache": True},
-     False),
-    ("march 6 voxels + light cache",
-     {"integrator": "single", "estimator": "march", "step_voxels": 6.0, "light_cache": True},
-     False),
-    ("march 7 voxels + light cache",
-     {"integrator": "single", "estimator": "march", "step_voxels": 7.0, "light_cache": True},
-     False),
+    *(march_with_light_cache(voxels) for voxels in (2, 4, 8, 6, 7)),
     # Ratio tracking for in-scattering with next-event estimation at 4 collisions per walk
     # (render.volume.nee_points, docs/volumes.md): the README's 1.74x row (--configs 7).
     ("residual-ratio, 4 next-event points",
