@@ -163,7 +163,17 @@ SkySample reference_sky(const SkyScene& sky, const DVec3& p, const DVec3& d, dou
         }
     }
 
-    if (hits_ground && reaches_end) {
+    // A black ground reflects nothing: no sun and no path from it. (Its path used to be traced
+    // anyway and multiplied by the albedo 0: every downward ray forked a second subtree, so a
+    // path's cost grew as ~1.5^orders instead of in proportion to them; DISORT's slab over a
+    // black surface, 200 paths at 8 orders: 2.5 s -> 0.5 s, tests/volume/sky_slab_test.cpp.)
+    bool ground_reflects = false;
+    for (int i = 0; i < n; ++i)
+        ground_reflects = ground_reflects || a.ground_albedo[i] > 0.0;
+    if (hits_ground && reaches_end && !ground_reflects) {
+        for (int i = 0; i < n; ++i)
+            out.transmittance[i] = 0.0;
+    } else if (hits_ground && reaches_end) {
         // Lambertian ground: direct sun (one event) and, with orders left, one cosine-sampled
         // path for the light from the sky (the weight albedo/pi * cos / (cos/pi) = albedo).
         const DVec3 x = p + t_exit * d;
