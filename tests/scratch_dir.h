@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,12 @@ class ScratchDir {
     ScratchDir& operator=(const ScratchDir&) = delete;
 
     std::string file(const std::string& name) const { return (m_path / name).string(); }
+    /// Writes `text` to the file `name` in the directory and returns the file's path.
+    std::string write(const std::string& name, const std::string& text) const {
+        const std::string path = file(name);
+        std::ofstream(path) << text;
+        return path;
+    }
     std::vector<std::string> entries() const {
         std::vector<std::string> names;
         for (const auto& e : std::filesystem::directory_iterator(m_path))

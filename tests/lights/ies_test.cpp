@@ -2,9 +2,9 @@
 
 #include "core/error.h"
 #include "light_test_util.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -326,8 +326,8 @@ TEST(Ies, BadFilesNameTheLine) {
 
 TEST(Ies, BadTiltFileNamesItsOwnLine) {
     // TILT=<filename> is read relative to the IES file; its errors name the tilt file's line.
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("kasumi_ies_tilt_" + std::to_string(::getpid()));
+    const ScratchDir scratch("kasumi_ies_tilt_");
+    const std::filesystem::path& dir = scratch.path();
     std::filesystem::create_directories(dir / "sub");
     std::ofstream(dir / "sub" / "lamp.tlt") << "3\n2\n0 90\n1.0 x\n";
     std::ofstream(dir / "extra.tlt") << "2 2 0 90 1 0.5\n7\n";
@@ -355,7 +355,6 @@ TEST(Ies, BadTiltFileNamesItsOwnLine) {
     EXPECT_NE(what.find((dir / "extra.tlt").string() + ":2: unexpected data after the tilt"),
               std::string::npos)
         << what;
-    std::filesystem::remove_all(dir);
 }
 
 TEST(GoniometricLight, BadIesFileIsAnInputErrorNamingSceneAndPointer) {

@@ -6,6 +6,7 @@
 #include "render/scene_loader.h"
 #include "surface/radiosity_solver.h"
 #include "test_scene.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -159,10 +160,8 @@ TEST(RadiosityTest, DirectLightOnPatchesMatchesTheInverseSquareLaw) {
 }
 
 TEST(RadiosityTest, TheCacheIsReusedAndInvalidatedByAChangedLight) {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("kasumi_radiosity_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    const std::string cache = (dir / "solution.bin").string();
+    const ScratchDir dir("kasumi_radiosity_");
+    const std::string cache = dir.file("solution.bin");
     const std::string settings =
         R"({"patch_size_m": 0.25, "max_subdivision": 1, "cache": ")" + cache + "\"}";
     const auto first = runtime_from_text(shadow_scene(settings));
@@ -181,7 +180,6 @@ TEST(RadiosityTest, TheCacheIsReusedAndInvalidatedByAChangedLight) {
     brighter.replace(brighter.find("\"intensity_cd\": 100"), 19, "\"intensity_cd\": 200");
     const auto third = runtime_from_text(brighter);
     EXPECT_FALSE(radiosity_of(*third).stats().from_cache);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(RadiosityTest, CornellBoxAgreesWithThePathTracer) {

@@ -5,45 +5,15 @@
 #include "core/rng.h"
 #include "render/study_report.h"
 #include "render/svg_plot.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-
-#include <unistd.h>
 
 namespace kasumi {
 namespace {
-
-/// A directory of one test's own under the system temp dir, removed when it goes out of scope
-/// (also when a failed assertion ends the test early).
-class ScratchDir {
-  public:
-    explicit ScratchDir(const std::string& tag)
-        : m_path(std::filesystem::temp_directory_path() /
-                 ("kasumi_study_" + tag + "_" + std::to_string(::getpid()))) {
-        std::filesystem::create_directories(m_path);
-    }
-    ~ScratchDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(m_path, ec);
-    }
-    ScratchDir(const ScratchDir&) = delete;
-    ScratchDir& operator=(const ScratchDir&) = delete;
-
-    const std::filesystem::path& path() const { return m_path; }
-    /// Writes `text` to the file `name` in the directory and returns the file's path.
-    std::string write(const std::string& name, const std::string& text) const {
-        const std::string file = (m_path / name).string();
-        std::ofstream(file) << text;
-        return file;
-    }
-
-  private:
-    std::filesystem::path m_path;
-};
 
 RgbPlane plane(int w, int h, std::vector<Rgb> pixels) {
     return RgbPlane{w, h, std::move(pixels)};
@@ -189,7 +159,7 @@ TEST(StudyAxes, MostAccurateValue) {
 }
 
 TEST(StudyDocument, CreatesMissingParents) {
-    const ScratchDir dir("doc");
+    const ScratchDir dir("kasumi_study_");
     const std::string path = dir.write("s.json", R"({"film": {"width": 4}})");
     const Json doc = study_document(path, {"/render/volume/step_m=0.5", "/film/spp=3"});
     EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(), 0.5);
@@ -222,7 +192,7 @@ TEST(StudyDocument, WildcardsExpandOverArraysAndObjects) {
 }
 
 TEST(StudyDocument, ObjectValuesMergeIntoObjects) {
-    const ScratchDir dir("merge");
+    const ScratchDir dir("kasumi_study_");
     const std::string path = dir.write("s.json", R"({"lights": [{"type": "point", "shadows": "map",
                                             "shadow_map": {"resolution": 64, "bias": 0.1}},
                                            {"type": "point"}]})");
@@ -272,7 +242,7 @@ TEST(StudyRun, ErrorFallsWithSamplesAndFilesAreWritten) {
     // and the 512-spp reference adds its own: MSE(1 spp) ~ s^2 (1 + 1/512) against
     // MSE(16 spp) ~ s^2 (1/16 + 1/512), a ratio near 15; asserting 4 leaves a wide margin.
     // Seeds are fixed, so the test is deterministic.
-    const ScratchDir dir("run");
+    const ScratchDir dir("kasumi_study_");
     const std::string path = dir.write("fog.json", R"({
       "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
       "film": {"width": 12, "height": 8, "spp": 1},
@@ -303,7 +273,7 @@ TEST(StudyRun, BuildTimingRendersTheSameImages) {
     // Timing the build as well (each repeat builds the runtime from the parsed scene) must not
     // change what is rendered: with fixed seeds the errors equal those of render-only timing,
     // for an axis that merges an object into every light (ray-traced shadows vs a shadow map).
-    const ScratchDir dir("build");
+    const ScratchDir dir("kasumi_study_");
     const std::string path = dir.write("shadow.json", R"({
       "camera": {"position": [0, 3, 5], "look_at": [0, 0, 0]},
       "film": {"width": 12, "height": 8, "spp": 1, "jitter": false},
@@ -345,7 +315,7 @@ TEST(StudyRun, ProbeAgainstExactBeerLambert) {
     // estimates of p = T, s.e. sqrt(p (1 - p) / N) = 0.0033 at N = 1e4; |error| < 4 s.e. fails
     // with probability 6e-5 (fixed seeds: deterministic). The march is exact in a homogeneous
     // medium (optical depth integrated analytically), so its error is rounding only.
-    const ScratchDir dir("probe");
+    const ScratchDir dir("kasumi_study_");
     const std::string path = dir.write("fog.json", R"({
       "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
       "film": {"width": 4, "height": 4, "spp": 1},

@@ -5,6 +5,7 @@
 #include "core/reference_spectra.h"
 #include "core/spectrum.h"
 #include "tests/input_error.h"
+#include "tests/scratch_dir.h"
 #include "volume/atmosphere_json.h"
 #include "volume/sky_reference.h"
 #include "volume/sky_scene.h"
@@ -12,7 +13,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 namespace kasumi {
 namespace {
@@ -188,28 +188,12 @@ TEST(OzoneAuto, ZenithOpticalDepthIsCrossSectionTimesColumn) {
               std::string::npos);
 }
 
-struct TempDir {
-    std::filesystem::path path;
-    TempDir() {
-        path = std::filesystem::temp_directory_path() /
-               ("kasumi_sky_data_" +
-                std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        std::filesystem::create_directories(path);
-    }
-    ~TempDir() { std::filesystem::remove_all(path); }
-    std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path / name) << text;
-        return (path / name).string();
-    }
-};
-
 TEST(CoefficientTables, CsvFileRelativeToTheSceneInterpolatesLinearly) {
-    TempDir dir;
+    const ScratchDir dir("kasumi_sky_data_");
     dir.write("ray.csv", "# test table\nwavelength_nm,value\n360,4e-5\n600,1e-5\n830,0.2e-5\n");
-    std::filesystem::create_directories(dir.path / "tables");
+    std::filesystem::create_directories(dir.path() / "tables");
     dir.write("tables/mie.csv", "350,3e-6\n850,5e-6\n");
-    const std::string scene = (dir.path / "scene.json").string();
+    const std::string scene = (dir.path() / "scene.json").string();
     const std::vector<double> nm = spectral_wavelengths_nm(16);
     const Atmosphere a = parse(R"({"rayleigh": {"scattering": "ray.csv"},
         "mie": {"scattering": {"table": "tables/mie.csv", "scale": 0.5},
@@ -232,10 +216,10 @@ TEST(CoefficientTables, CsvFileRelativeToTheSceneInterpolatesLinearly) {
 }
 
 TEST(CoefficientTables, ErrorsNameSceneFilePointerCsvLineAndRange) {
-    TempDir dir;
+    const ScratchDir dir("kasumi_sky_data_");
     dir.write("bad.csv", "400,1e-6\n500,x\n");
     dir.write("short.csv", "400,1e-6\n700,2e-6\n");
-    const std::string scene = (dir.path / "scene.json").string();
+    const std::string scene = (dir.path() / "scene.json").string();
     const std::vector<double> nm = spectral_wavelengths_nm(8);
     std::string m =
         input_error([&] { parse(R"({"ozone": {"absorption": "bad.csv"}})", nm, scene); });
@@ -257,10 +241,10 @@ TEST(CoefficientTables, ErrorsNameSceneFilePointerCsvLineAndRange) {
 }
 
 TEST(SunSpectrumKeys, BlackbodyTableAndErrors) {
-    TempDir dir;
+    const ScratchDir dir("kasumi_sky_data_");
     dir.write("flat.csv", "300,1\n900,1\n");
     dir.write("narrow.csv", "500,1\n600,1\n");
-    const std::string file = (dir.path / "scene.json").string();
+    const std::string file = (dir.path() / "scene.json").string();
     Json doc;
     auto sun = [&](const std::string& json) {
         doc = parse_json_text(json, file);
