@@ -144,7 +144,17 @@ void add_render_command(CLI::App& root) {
             }
             doc = animated_document(std::move(doc), overrides, options->frame,
                                     scene_options.scene_path);
-            return parse_scene(doc, scene_options.scene_path);
+            try {
+                return parse_scene(doc, scene_options.scene_path);
+            } catch (const Error& e) {
+                // As `sequence` says it: where the frame lies among the key frames.
+                if (e.kind() != ErrorKind::Input)
+                    throw;
+                throw Error(
+                    e.kind(),
+                    e.what() + frame_context(read_json_file(scene_options.scene_path), overrides,
+                                             options->frame, scene_options.scene_path, e.what()));
+            }
         }();
         times.load_s = seconds_since(load_start);
 

@@ -388,6 +388,14 @@ std::string frame_context(const Animation& animation, int64_t frame, const std::
            " of /animate" + tracks + ")";
 }
 
+std::string frame_context(Json root, const std::vector<Override>& overrides, int64_t frame,
+                          const std::string& file, const std::string& message) {
+    apply_overrides(root, overrides, file);
+    if (!root.is_object() || !root.contains("animate"))
+        return std::string();
+    return frame_context(parse_animation(root, file), frame, message);
+}
+
 Json frame_document(const Json& root, const Animation& animation, int64_t frame) {
     Json doc = root;
     if (doc.is_object())

@@ -76,6 +76,12 @@ Json evaluate(const Track& track, int64_t frame);
 /// "; /media/0/phase/g between key frames 5 and 10" (or "held at key frame 10", outside them).
 std::string frame_context(const Animation& animation, int64_t frame, const std::string& message);
 
+/// frame_context of the animation `root` holds once `overrides` are applied, as
+/// animated_document reads it: for an error in the document animated_document(root, overrides,
+/// frame, file) built (`kasumi render --frame N`). Empty when root has no "animate".
+std::string frame_context(Json root, const std::vector<Override>& overrides, int64_t frame,
+                          const std::string& file, const std::string& message);
+
 /// The document of `frame`: `root` without "animate", each track's value written at its pointer.
 Json frame_document(const Json& root, const Animation& animation, int64_t frame);
 

@@ -42,6 +42,25 @@ expect_exit 0 "" -- check "$scene"
 expect_exit 0 "" -- render "$scene" --frame 30 "${tiny[@]}" -o "$work/r/f30.exr" -q
 [ -s "$work/r/f30.exr" ] || fail "render --frame wrote no EXR"
 
+# An error in a key-framed value at `render --frame N` names the key frames around N, as
+# `sequence` and `check` do: spp keyed 1 at frame 0 and 3 at frame 4 is 1.5 at frame 1 (not an
+# integer); key frame 4 is valid; an error in a value not animated gets only the frame.
+cat >"$work/spp.json" <<'JSON'
+{"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]},
+ "film": {"width": 4, "height": 3, "spp": 1},
+ "lights": [{"type": "directional", "direction": [0, -1, 0], "illuminance_lux": 1000}],
+ "animate": {"/film/spp": [[0, 1], [4, 3]]}}
+JSON
+expect_exit 3 "spp.json: /film/spp = 1.5: expected an integer \(at frame 1 of /animate; /film/spp between key frames 0 and 4\)$" \
+  -- render "$work/spp.json" --frame 1 -o "$work/spp/f1.exr" -q
+expect_exit 3 "/film/spp = 2.5: .*\(at frame 3 of /animate; /film/spp between key frames 0 and 4\)$" \
+  -- render "$work/spp.json" --frame 3 -o "$work/spp/f3.exr" -q
+expect_exit 3 "spp.json: /film/width = 0: .*\(at frame 2 of /animate\)$" \
+  -- render "$work/spp.json" --frame 2 --set /film/width=0 -o "$work/spp/f2.exr" -q
+expect_exit 0 "" -- render "$work/spp.json" --frame 4 -o "$work/spp/f4.exr" -q
+[ -e "$work/spp/f1.exr" ] || [ -e "$work/spp/f3.exr" ] || [ -e "$work/spp/f2.exr" ] &&
+  fail "a rejected frame wrote output"
+
 # 24 frames: every file, one log line per frame with its time, a summary, the contact sheet.
 expect_exit 0 "" -- sequence "$scene" --frames 0-23 -o "$work/seq/fog.####.exr" "${tiny[@]}" \
   --preview-dir "$work/prev"
