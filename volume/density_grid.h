@@ -65,6 +65,48 @@ class DensityGrid {
                          q - Vec3(c));
     }
 
+    /// One coordinate of a lookup point as density() splits it, for a caller that looks up many
+    /// points sharing coordinates (the light cache's sweep: every lattice row and column repeats
+    /// its coordinates): density_split(axis_split(0, p.x), axis_split(1, p.y), axis_split(2,
+    /// p.z)) equals density(p) bit for bit.
+    struct AxisSplit {
+        size_t slot = 0;      ///< brick coordinate times the brick table's stride on this axis
+        int offset = 0;       ///< voxel coordinate within the brick times its stride
+        float f = 0.0f;       ///< fraction within the cell
+        bool inside = false;  ///< within the stored region on this axis
+    };
+    AxisSplit axis_split(int axis, float p_index) const {
+        AxisSplit s;
+        const float q = p_index - m_origin_f[axis];
+        s.inside = q >= 0.0f && q < m_cells_f[axis];
+        if (!s.inside)
+            return s;
+        const int c = static_cast<int>(q);  // q >= 0: truncation is the floor
+        const size_t stride[3] = {
+            1, static_cast<size_t>(m_bricks.x),
+            static_cast<size_t>(m_bricks.x) * static_cast<size_t>(m_bricks.y)};
+        const int voxel_stride[3] = {1, kStored, kStored * kStored};
+        s.slot = static_cast<size_t>(c >> 3) * stride[axis];
+        s.offset = (c & (kBrick - 1)) * voxel_stride[axis];
+        s.f = q - static_cast<float>(c);
+        return s;
+    }
+    /// density() at the point of three splits. `Flat` (bit a for axis a) names axes whose
+    /// fraction the caller knows to be 0: their interpolation is skipped, which gives the same
+    /// bits (a + 0 · (b - a) = a for the finite, non-negative, never -0 voxels a grid holds)
+    /// with fewer loads (all three flat: one voxel).
+    template <unsigned Flat = 0>
+    float density_split(const AxisSplit& x, const AxisSplit& y, const AxisSplit& z) const {
+        if (!(x.inside && y.inside && z.inside))
+            return 0.0f;
+        const int32_t brick = m_brick_index[x.slot + y.slot + z.slot];
+        if (brick < 0)
+            return 0.0f;
+        const float* v =
+            &m_voxels[static_cast<size_t>(brick) * kBrickVoxels] + x.offset + y.offset + z.offset;
+        return trilinear_flat<Flat>(v, x.f, y.f, z.f);
+    }
+
     /// Asks the processor to start loading the voxels a lookup at p_index will read (the brick
     /// table entry is read now): a march calls it a node or two ahead so the lookup finds them
     /// in cache. Reads nothing else and changes nothing; no effect where nothing is stored.
@@ -143,6 +185,37 @@ class DensityGrid {
         const float y0 = x00 + f.y * (x10 - x00);
         const float y1 = x01 + f.y * (x11 - x01);
         return y0 + f.z * (y1 - y0);
+    }
+    /// trilinear() at the cell whose voxel (0, 0, 0) is at v, without the interpolation along
+    /// the axes in `Flat` (their fraction is 0): the same operations on the rest, so the same
+    /// bits (see density_split).
+    template <unsigned Flat>
+    static float trilinear_flat(const float* v, float fx, float fy, float fz) {
+        constexpr int dy = kStored, dz = kStored * kStored;
+        constexpr bool flat_x = Flat & 1u, flat_y = Flat & 2u, flat_z = Flat & 4u;
+        const auto along_x = [&](int o) {
+            if constexpr (flat_x)
+                return v[o];
+            else
+                return v[o] + fx * (v[o + 1] - v[o]);
+        };
+        const float x00 = along_x(0);
+        float y0 = x00;
+        if constexpr (!flat_y) {
+            const float x10 = along_x(dy);
+            y0 = x00 + fy * (x10 - x00);
+        }
+        if constexpr (flat_z) {
+            return y0;
+        } else {
+            const float x01 = along_x(dz);
+            float y1 = x01;
+            if constexpr (!flat_y) {
+                const float x11 = along_x(dz + dy);
+                y1 = x01 + fy * (x11 - x01);
+            }
+            return y0 + fz * (y1 - y0);
+        }
     }
     size_t brick_slot(IVec3 b) const {
         return static_cast<size_t>(b.x) +

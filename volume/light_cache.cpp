@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace kasumi {
@@ -70,40 +71,94 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
     const std::vector<Axis> along_b = axis_table(b), along_c = axis_table(c);
     const size_t stride[3] = {1, static_cast<size_t>(m_dims.x),
                               static_cast<size_t>(m_dims.x) * static_cast<size_t>(m_dims.y)};
-    // Within a slice every point reads only the upstream slice, so the order of the two inner
-    // loops is free: the innermost runs along the lower axis (x before y before z), the one
-    // along which both this lattice and the grid's bricks (numbered x fastest) are contiguous.
-    const int inner = std::min(b, c), outer = std::max(b, c);
-    for (int slice = first; slice >= 0 && slice < m_dims[a]; slice -= toward) {
-        const int upstream = slice + toward;
-        const bool inside = upstream >= 0 && upstream < m_dims[a];
-        IVec3 p;
-        p[a] = slice;
-        for (p[outer] = 0; p[outer] < m_dims[outer]; ++p[outer]) {
-            for (p[inner] = 0; p[inner] < m_dims[inner]; ++p[inner]) {
-                const Axis& ev = along_c[static_cast<size_t>(p[c])];
-                const Vec3 x = m_lower + m_cell * Vec3(p);
-                const Vec3 q = x + step;
-                const float rho_p = grid.density(x);
-                const float rho_m = grid.density(x + 0.5f * step);
-                const float rho_q = grid.density(q);
-                float upstream_d = 0.0f;
-                if (inside) {
-                    const Axis& eu = along_b[static_cast<size_t>(p[b])];
-                    const float* row = m_d.data() + static_cast<size_t>(upstream) * stride[a];
-                    for (int dv = 0; dv < 2; ++dv)
-                        for (int du = 0; du < 2; ++du) {
-                            if (!eu.in[du] || !ev.in[dv])
-                                continue;
-                            upstream_d += eu.w[du] * ev.w[dv] *
-                                          row[static_cast<size_t>(eu.i0 + du) * stride[b] +
-                                              static_cast<size_t>(ev.i0 + dv) * stride[c]];
-                        }
-                }
-                at(p) = upstream_d + length_m * (rho_p + 4.0f * rho_m + rho_q) * (1.0f / 6.0f);
-            }
+    // The three densities of a point (at x, the midpoint x + step / 2 and q = x + step) are
+    // grid lookups whose coordinates, axis by axis, depend on that axis's lattice index alone
+    // (x = lower + cell p per component): they are split once per lattice index and axis
+    // (DensityGrid::axis_split) and combined per point, the same bits as grid.density(x) of
+    // the whole point. x lies on voxels (integer index coordinates: fraction 0 on every axis)
+    // and so do the midpoint and q along a when the step there is a whole number of voxels
+    // (cell >= 2): those lookups skip the interpolation along such axes (same bits).
+    using Split = DensityGrid::AxisSplit;
+    std::vector<Split> split_x[3], split_m[3], split_q[3];
+    bool x_on_voxels = true, m_q_flat_along_a = true;
+    for (int axis = 0; axis < 3; ++axis) {
+        for (int i = 0; i < m_dims[axis]; ++i) {
+            // The expressions of the per-point form, component by component.
+            const float x = m_lower[axis] + m_cell * static_cast<float>(i);
+            split_x[axis].push_back(grid.axis_split(axis, x));
+            split_m[axis].push_back(grid.axis_split(axis, x + 0.5f * step[axis]));
+            split_q[axis].push_back(grid.axis_split(axis, x + step[axis]));
+            x_on_voxels = x_on_voxels && split_x[axis].back().f == 0.0f;
+            if (axis == a)
+                m_q_flat_along_a = m_q_flat_along_a && split_m[axis].back().f == 0.0f &&
+                                   split_q[axis].back().f == 0.0f;
         }
     }
+    // The slices' axis a as a template argument (so are b, c and the loop order: the point's
+    // coordinates stay in registers), and which lookups lie on voxels.
+    const auto sweep = [&](auto axis_a, auto flat_x, auto flat_a) {
+        constexpr int A = decltype(axis_a)::value, B = (A + 1) % 3, C = (A + 2) % 3;
+        constexpr unsigned kFlatX = decltype(flat_x)::value, kFlatA = decltype(flat_a)::value;
+        // Within a slice every point reads only the upstream slice, so the order of the two
+        // inner loops is free: the innermost runs along the lower axis (x before y before z),
+        // the one along which both this lattice and the grid's bricks (numbered x fastest) are
+        // contiguous.
+        constexpr int kInner = B < C ? B : C, kOuter = B < C ? C : B;
+        const Split* sx[3];
+        const Split* sm[3];
+        const Split* sq[3];
+        for (int axis = 0; axis < 3; ++axis) {
+            sx[axis] = split_x[axis].data();
+            sm[axis] = split_m[axis].data();
+            sq[axis] = split_q[axis].data();
+        }
+        for (int slice = first; slice >= 0 && slice < m_dims[A]; slice -= toward) {
+            const int upstream = slice + toward;
+            const bool inside = upstream >= 0 && upstream < m_dims[A];
+            const float* row = m_d.data() + static_cast<size_t>(inside ? upstream : 0) * stride[A];
+            IVec3 p;
+            p[A] = slice;
+            for (p[kOuter] = 0; p[kOuter] < m_dims[kOuter]; ++p[kOuter]) {
+                for (p[kInner] = 0; p[kInner] < m_dims[kInner]; ++p[kInner]) {
+                    const float rho_p =
+                        grid.density_split<kFlatX>(sx[0][p.x], sx[1][p.y], sx[2][p.z]);
+                    const float rho_m =
+                        grid.density_split<kFlatA>(sm[0][p.x], sm[1][p.y], sm[2][p.z]);
+                    const float rho_q =
+                        grid.density_split<kFlatA>(sq[0][p.x], sq[1][p.y], sq[2][p.z]);
+                    float upstream_d = 0.0f;
+                    if (inside) {
+                        const Axis& eu = along_b[static_cast<size_t>(p[B])];
+                        const Axis& ev = along_c[static_cast<size_t>(p[C])];
+                        for (int dv = 0; dv < 2; ++dv)
+                            for (int du = 0; du < 2; ++du) {
+                                if (!eu.in[du] || !ev.in[dv])
+                                    continue;
+                                upstream_d += eu.w[du] * ev.w[dv] *
+                                              row[static_cast<size_t>(eu.i0 + du) * stride[B] +
+                                                  static_cast<size_t>(ev.i0 + dv) * stride[C]];
+                            }
+                    }
+                    at(p) = upstream_d + length_m * (rho_p + 4.0f * rho_m + rho_q) * (1.0f / 6.0f);
+                }
+            }
+        }
+    };
+    using Flat0 = std::integral_constant<unsigned, 0u>;
+    using Flat7 = std::integral_constant<unsigned, 7u>;
+    using X = std::integral_constant<int, 0>;
+    using Y = std::integral_constant<int, 1>;
+    using Z = std::integral_constant<int, 2>;
+    const bool flat = x_on_voxels && m_q_flat_along_a;  // not at cell 1: midpoints off voxels
+    if (a == 0)
+        flat ? sweep(X{}, Flat7{}, std::integral_constant<unsigned, 1u>{})
+             : sweep(X{}, Flat0{}, Flat0{});
+    else if (a == 1)
+        flat ? sweep(Y{}, Flat7{}, std::integral_constant<unsigned, 2u>{})
+             : sweep(Y{}, Flat0{}, Flat0{});
+    else
+        flat ? sweep(Z{}, Flat7{}, std::integral_constant<unsigned, 4u>{})
+             : sweep(Z{}, Flat0{}, Flat0{});
 }
 
 std::optional<Rgb> LightTransmittanceCache::transmittance(const Vec3& p_world) const {

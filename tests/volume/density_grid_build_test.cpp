@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -131,6 +132,47 @@ TEST(DensityGridBuild, EqualsPerVoxelSetAtEveryBrickAlignment) {
             }
         }
     }
+}
+
+// DensityGrid::axis_split + density_split (the light cache's per-axis lookups) against
+// density() at the same point: bit-identical, at random points and, with the interpolation
+// skipped along axes whose fraction is 0 (density_split<Flat>), at points on voxels along those
+// axes (integer coordinates there), inside, on the aprons and outside the stored region.
+TEST(DensityGridBuild, SplitLookupsEqualDensityBitForBit) {
+    const RandomBlocks r = random_blocks(31, 40, IVec3(3, 5, 1));
+    const DensityGridBuild built = DensityGridBuilder::build(r.index_min, r.index_max, r.blocks);
+    ASSERT_TRUE(built.grid);
+    const DensityGrid& grid = *built.grid;
+    const auto split = [&](const Vec3& p) {
+        return std::array<DensityGrid::AxisSplit, 3>{
+            grid.axis_split(0, p.x), grid.axis_split(1, p.y), grid.axis_split(2, p.z)};
+    };
+    Pcg32 rng(41, 2);
+    const Vec3 lo = grid.lower() - Vec3(3.0f), extent = grid.upper() - grid.lower() + 6.0f;
+    int nonzero = 0;
+    for (int i = 0; i < 100000; ++i) {
+        Vec3 p = lo + extent * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
+        const auto s = split(p);
+        ASSERT_EQ(grid.density_split(s[0], s[1], s[2]), grid.density(p));
+        // The same point moved onto voxels along a (fraction 0 there), then along all axes.
+        for (int a = 0; a < 3; ++a) {
+            Vec3 q = p;
+            q[a] = std::floor(q[a]);
+            const auto t = split(q);
+            const float expected = grid.density(q);
+            nonzero += expected > 0.0f;
+            if (a == 0)
+                ASSERT_EQ(grid.density_split<1>(t[0], t[1], t[2]), expected);
+            else if (a == 1)
+                ASSERT_EQ(grid.density_split<2>(t[0], t[1], t[2]), expected);
+            else
+                ASSERT_EQ(grid.density_split<4>(t[0], t[1], t[2]), expected);
+        }
+        p = glm::floor(p);
+        const auto v = split(p);
+        ASSERT_EQ(grid.density_split<7>(v[0], v[1], v[2]), grid.density(p));
+    }
+    EXPECT_GT(nonzero, 3000);  // the points did reach the blocks
 }
 
 TEST(DensityGridBuild, FirstInvalidActiveVoxelIsReported) {
