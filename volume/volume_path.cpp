@@ -207,6 +207,11 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
     double k = 0.0;
     double depth = 0.0;  // integral of density along the ray so far (density · metres)
     uint64_t lookups = 0, steps = 0;
+    // The common cloud: one directional light, no surfaces to block it (sum of h rho T T_light
+    // over the nodes, times the light's f E once).
+    const GridLight* const single =
+        n_lights == 1 && !grid_lights[0].blockable ? &grid_lights[0] : nullptr;
+    float single_sum = 0.0f;
     const auto close_run = [&] {
         const float rho_end = DensityGrid::density_in(last, o + run_end * d);
         ++lookups;
@@ -257,6 +262,15 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
             if (!(rho > 0.0f) || n_lights == 0)
                 continue;
             ++steps;
+            if (single != nullptr) {
+                // One light that nothing else can block, on its cache: no light loop, and its
+                // weight applied once per ray (after the walk) instead of per node.
+                float integral = 0.0f;
+                if (single->cache->density_integral(single->line, t, integral)) {
+                    single_sum += h * rho * std::exp(-(tau + sigma_t * integral));
+                    continue;
+                }
+            }
             for (size_t i = 0; i < n_lights; ++i) {
                 const GridLight& m = grid_lights[i];
                 if (m.blockable && blocked(occlusion, ray.at(t), m.incident, counters))
@@ -277,6 +291,8 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
         return true;
     };
     grid.walk(o, d, span->first, span->second, visit);
+    if (single != nullptr)
+        result.radiance += single_sum * single->weight;
     if (in_run && !stopped)
         close_run();
     counters.density_lookups += lookups;
