@@ -10,7 +10,8 @@
 ///    constant, so each froxel holds the Rayleigh and Mie single scattering *without* phase and
 ///    the (isotropic) multiple scattering separately, and the lookup multiplies them by the
 ///    ray's own phases. The Mie forward peak around the sun is exact per pixel instead of being
-///    interpolated over 2 degrees of froxel.
+///    interpolated over 2 degrees of froxel. (The Rayleigh phase, whose depolarisation may vary
+///    with the wavelength, is c0_b + c2_b mu² per band: its light is kept as two sums, below.)
 ///  - Depth slices crowd quadratically toward the camera: slice k ends at 32 km (k / 32)², the
 ///    first at 31 m, the last 2 km wide; between slices the values are linear in the distance
 ///    (so the first slice is exact to first order in t, where L ~ t and 1 - T ~ t).
