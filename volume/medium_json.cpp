@@ -166,6 +166,27 @@ VdbMedium parse_vdb(JsonObjectReader& reader, const std::string& base_dir) {
     auto albedo = reader.optional("albedo");
     auto sigma_a = reader.optional("sigma_a");
     auto sigma_s = reader.optional("sigma_s");
+    // Visibility form (volume/visibility.h): V is the visibility where the scaled density is 1,
+    // extinction per unit density -ln(eps) / V times density_scale, split by the albedo.
+    auto visibility = reader.optional("visibility_m");
+    auto threshold = reader.optional("contrast_threshold");
+    if (visibility && (sigma_a || sigma_s))
+        visibility->fail("give either visibility_m or sigma_a and sigma_s, not both");
+    if (threshold && !visibility)
+        threshold->fail("goes with visibility_m");
+    double extinction_per_density = 1.0;  // 1/m at density 1, before density_scale
+    if (visibility) {
+        const double visibility_m = visibility->as_double();
+        if (!(visibility_m > 0.0))
+            visibility->fail("must be > 0");
+        const double eps = threshold ? threshold->as_double() : kMorContrastThreshold;
+        if (!(eps > 0.0 && eps < 1.0))
+            threshold->fail("must be in (0, 1)");
+        extinction_per_density = extinction_from_visibility(visibility_m, eps);
+        if (!(extinction_per_density * density_scale <= 3.0e38))
+            visibility->fail(
+                "too short: -ln(eps) / V times density_scale is beyond single precision");
+    }
     if (albedo && (sigma_a || sigma_s))
         albedo->fail("give either albedo or sigma_a and sigma_s, not both");
     if (bool(sigma_a) != bool(sigma_s))
@@ -174,15 +195,16 @@ VdbMedium parse_vdb(JsonObjectReader& reader, const std::string& base_dir) {
         m.sigma_a_per_density = sigma_a->non_negative_rgb() * density_scale;
         m.sigma_s_per_density = sigma_s->non_negative_rgb() * density_scale;
     } else {
-        // albedo form: extinction per unit density is density_scale (1/m).
+        // albedo form: extinction per unit density is density_scale (1/m), or the visibility's.
         Rgb a(1.0f);
         if (albedo) {
             a = albedo->non_negative_rgb();
             if (max_component(a) > 1.0f)
                 albedo->fail("must be in [0, 1] per channel");
         }
-        m.sigma_s_per_density = a * density_scale;
-        m.sigma_a_per_density = (Rgb(1.0f) - a) * density_scale;
+        const float extinction = static_cast<float>(extinction_per_density * density_scale);
+        m.sigma_s_per_density = a * extinction;
+        m.sigma_a_per_density = (Rgb(1.0f) - a) * extinction;
     }
     if (auto v = reader.optional("phase"))
         m.phase = parse_phase(*v);

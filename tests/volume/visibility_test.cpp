@@ -10,6 +10,7 @@
 #include "volume/transmittance.h"
 
 #include "../input_error.h"
+#include "vdb_test_grids.h"
 
 #include <gtest/gtest.h>
 
@@ -181,6 +182,81 @@ TEST(FogVisibility, KeysThatNeedVisibilityAreRejectedWithoutIt) {
         parse(R"({"type": "homogeneous", "sigma_a": 0.01, "sigma_s": 0.05})").model);
     EXPECT_EQ(m.sigma_a, Rgb(0.01f));
     EXPECT_EQ(m.sigma_s, Rgb(0.05f));
+}
+
+// A grid by its visibility: V is the visibility where density_scale × density is 1. An 8³ box of
+// density 1 in voxels of V / 8: a ray through two opposite faces crosses V of density 1 (the
+// trilinear ramps integrate like a sharp box, vdb_test_grids.h), so its transmittance is eps,
+// and eps^2 at density_scale 2. The march at 1/200 of a voxel is deterministic and exact but for
+// the trapezoid rule at the ramps' two kinks and float rounding (measured: below 1e-6 relative;
+// the bound is 1e-5).
+TEST(FogVisibility, GridTransmittanceOverTheVisibilityIsTheThreshold) {
+    for (const double v : {40.0, 2000.0}) {
+        const double voxel = v / 8.0;
+        const std::string path =
+            test::write_box("visibility_box_" + std::to_string(int(v)), 8, 1.0f, voxel);
+        const float centre = static_cast<float>(3.5 * voxel);
+        const Ray ray{Vec3(static_cast<float>(-2.0 * voxel), centre, centre), Vec3(1, 0, 0), 0.0f,
+                      static_cast<float>(12.0 * voxel)};
+        for (const double eps : {kMorContrastThreshold, kKoschmiederContrastThreshold}) {
+            for (const double scale : {1.0, 2.0}) {
+                Json keys = {{"visibility_m", v}, {"density_scale", scale}, {"albedo", 0.9}};
+                if (eps != kMorContrastThreshold)
+                    keys["contrast_threshold"] = eps;
+                const MediumSet media({test::vdb_medium(path, keys)});
+                Pcg32 rng(3, 5);
+                VolumeCounters counters;
+                const Rgb t = estimate_transmittance(
+                    media, ray, Estimator::March, static_cast<float>(voxel / 200.0), rng, counters);
+                const double expected = std::pow(eps, scale);
+                EXPECT_NEAR(t.g, expected, 1e-5 * expected)
+                    << "V = " << v << " m, eps = " << eps << ", density_scale " << scale;
+                EXPECT_EQ(t.r, t.b);  // grey
+            }
+        }
+    }
+}
+
+TEST(FogVisibility, GridAlbedoSplitsTheExtinctionPerUnitDensity) {
+    const std::string path = test::write_box("visibility_box_split", 4, 1.0f, 1.0);
+    const Medium m = test::vdb_medium(
+        path, {{"visibility_m", 100.0}, {"density_scale", 3.0}, {"albedo", {0.9, 0.5, 0.0}}});
+    const VdbMedium& grid = std::get<VdbMedium>(m.model);
+    const float sigma_t = static_cast<float>(3.0 * extinction_from_visibility(100.0, 0.05));
+    const Rgb t = grid.sigma_t_per_density();
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(t[c], sigma_t, 1e-6f * sigma_t) << c;
+    EXPECT_NEAR(grid.sigma_s_per_density.r, 0.9f * sigma_t, 1e-6f * sigma_t);
+    EXPECT_NEAR(grid.sigma_s_per_density.g, 0.5f * sigma_t, 1e-6f * sigma_t);
+    EXPECT_EQ(grid.sigma_s_per_density.b, 0.0f);
+}
+
+TEST(FogVisibility, BadGridVisibilityIsRejected) {
+    const std::string path = test::write_box("visibility_box_bad", 4, 1.0f, 1.0);
+    const auto error = [&](const Json& keys) {
+        return input_error([&] { test::vdb_medium(path, keys); });
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const double v : {0.0, -50.0, nan, 1e-300}) {
+        const std::string e = error({{"visibility_m", v}});
+        EXPECT_NE(e.find("/media/0/visibility_m"), std::string::npos) << v << ": " << e;
+    }
+    for (const double eps : {0.0, 1.0, nan}) {
+        const std::string e = error({{"visibility_m", 100.0}, {"contrast_threshold", eps}});
+        EXPECT_NE(e.find("/media/0/contrast_threshold"), std::string::npos) << eps << ": " << e;
+    }
+    std::string e = error({{"visibility_m", 100.0}, {"sigma_a", 0.1}, {"sigma_s", 0.1}});
+    EXPECT_NE(
+        e.find("/media/0/visibility_m = 100.0: give either visibility_m or sigma_a and sigma_s"),
+        std::string::npos)
+        << e;
+    e = error({{"contrast_threshold", 0.05}});
+    EXPECT_NE(e.find("/media/0/contrast_threshold = 0.05: goes with visibility_m"),
+              std::string::npos)
+        << e;
+    // A finite V whose extinction overflows a float only once density_scale multiplies it.
+    e = error({{"visibility_m", 1e-8}, {"density_scale", 1e35}});
+    EXPECT_NE(e.find("/media/0/visibility_m"), std::string::npos) << e;
 }
 
 }  // namespace
