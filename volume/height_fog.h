@@ -55,6 +55,11 @@ inline double one_minus_exp_over(double x) {
     return x > 0.0 ? -std::expm1(-x) / x : 1.0;
 }
 
+/// (1 - e^{-x}) / x for any x without cancellation (e^{|x|} / |x| for x -> -inf); 1 at x = 0.
+inline double one_minus_exp_over_signed(double x) {
+    return x != 0.0 ? -std::expm1(-x) / x : 1.0;
+}
+
 /// Integral of exp(-(y(t) - h0) / H) dt over [t0, t1] along a ray with origin height `oy` and
 /// unit-direction y-component `dy` (metres; no density cap: the exact column). Returns +inf
 /// for an infinite column (horizontal or descending ray without end).

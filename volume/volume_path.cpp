@@ -301,11 +301,157 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
     return true;
 }
 
+/// march_single for a set that is one height fog (volume/height_fog.h), whose optical depths
+/// are closed forms that can be inverted. Along the ray, with c(t) the unit-density column from
+/// the fog's entry t0 (metres; rho(t) = rho_0 - kappa c(t), kappa = d_y / H), the camera depth
+/// is sigma c and the depth toward a directional light above the horizon (s_y > 0 the y of
+/// its direction) is sigma H rho / s_y + const = const - sigma (d_y / s_y) c: the product of
+/// both transmittances is e^{-sigma' c} up to a constant, sigma' = sigma (1 - d_y / s_y). So
+/// the march samples c from the pdf q(c) = e^{-sigma' c} / Z on [0, c_end] (c_end: the
+/// tail cut-off kTailTransmittance of the camera transmittance, or the ray's end;
+/// Z = -expm1(-sigma' c_end) / sigma'), stratified: N nodes c_k = F^{-1}((k + u) / N), one u
+/// per ray, t_k by inverting c(t) = rho_0 (1 - e^{-kappa (t - t0)}) / kappa. Since
+/// dt = dc / rho, the single scattering int sigma_s rho T(t) L(t) dt is estimated by
+///   (Z / N) sum_k sigma_s T(c_k) L(c_k) e^{sigma' c_k},
+/// L = sum_lights p E T_light V with T and T_light exact (closed forms): unbiased for any N and
+/// any sigma' (the pdf is only importance). sigma is the reference channel's (the least
+/// extinguished channel that scatters), the light the brightest directional one with
+/// s_y > kLowSun (sigma' = sigma without one), and sigma' is kept within +-8 sigma so the
+/// weights stay finite. For a grey fog without a box's sides in the way and a lit ray, every
+/// node then gives the same value: the variance left is the shadows' (V) and the other lights'.
+/// N: the step h laid along the ray where its fog is densest and lengthened in proportion to
+/// 1 / density elsewhere, N = ceil(l / h), l = c_end / rho_max = L g(|kappa| L) the ray's
+/// length at its densest (L to c_end, g(x) = (1 - e^{-x}) / x): a level ray gets the homogeneous
+/// march's node count, a steep one about H / |d_y| / h. Returns false, having drawn nothing,
+/// when the set is not one height fog.
+bool march_single_height_fog(const MediumSet& media, const std::vector<Light>& lights,
+                             const OcclusionQuery* occlusion, const Ray& ray,
+                             const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters,
+                             VolumeResult& result) {
+    if (media.media().size() != 1 || media.emits())
+        return false;
+    const auto* fog = std::get_if<HeightFogMedium>(&media.media()[0].model);
+    if (fog == nullptr)
+        return false;
+    constexpr float kLowSun = 0.02f;   // the sun's s_y below which it does not shape the pdf
+    constexpr double kMaxSlope = 8.0;  // |sigma'| <= kMaxSlope sigma
+    result = VolumeResult{};
+    double t0 = ray.t_min, t1 = ray.t_max;
+    if (fog->bounds) {
+        const auto span = fog->bounds->clip(ray);
+        if (!span)
+            return true;
+        t0 = span->first;
+        t1 = span->second;
+    }
+    if (!(t1 > t0))
+        return true;
+    const Rgb sigma_t = fog->sigma_t(), sigma_s = fog->sigma_s;
+    const double oy = ray.origin.y, dy = ray.direction.y;
+    const double column = height_fog_column(*fog, oy, dy, t0, t1);  // unit density, metres
+    result.transmittance = exp_neg(height_fog_optical_depth(*fog, ray));
+    // The reference channel: the smallest extinction among the channels that scatter.
+    double sigma = HUGE_VAL;
+    for (int c = 0; c < 3; ++c)
+        if (sigma_s[c] > 0.0f)
+            sigma = std::min(sigma, static_cast<double>(sigma_t[c]));
+    if (!(sigma < HUGE_VAL) || lights.empty() || !(column > 0.0))
+        return true;
+    const Vec3 wo = -ray.direction;
+    thread_local std::vector<MarchLight> march_lights;
+    march_lights.clear();
+    double sun_y = 0.0;
+    float sun_luminance = 0.0f;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        MarchLight m;
+        m.index = i;
+        if (std::holds_alternative<DirectionalLight>(lights[i].emitter)) {
+            m.directional = true;
+            m.incident = sample_incident(lights[i], ray.origin, rng);
+            if (is_black(m.incident.irradiance))
+                continue;
+            m.mu = scattering_cosine(wo, m.incident.wi);
+            const float y = luminance(m.incident.irradiance);
+            if (m.incident.wi.y > kLowSun && y > sun_luminance) {
+                sun_luminance = y;
+                sun_y = m.incident.wi.y;
+            }
+        }
+        march_lights.push_back(m);
+    }
+    const double c_end = std::min(column, static_cast<double>(kTailDepth) / sigma);
+    const double slope = sun_y > 0.0 ? std::clamp(1.0 - dy / sun_y, -kMaxSlope, kMaxSlope) : 1.0;
+    const double sigma_q = sigma * slope;  // sigma'
+    // Z = int_0^c_end e^{-sigma' c} dc, c_end when sigma' c_end -> 0.
+    const double z = c_end * one_minus_exp_over_signed(sigma_q * c_end);
+    const double H = fog->scale_height_m;
+    const double kappa = dy / H;  // d a / d t, per metre
+    const double rho_0 = std::exp(-(oy + dy * t0 - fog->reference_height_m) / H);
+    const double length = static_cast<double>(t1) - t0;
+    // The distance from t0 at which the unit-density column reaches c (clamped to the span).
+    const auto distance_at = [&](double c) {
+        const double x = kappa * c / rho_0;
+        double l = kappa == 0.0 ? c / rho_0 : (x < 1.0 ? -std::log1p(-x) / kappa : length);
+        if (!(l < length))  // rounding, or an inverse past the span (rho_0 underflow)
+            l = length;
+        return std::max(l, 0.0);
+    };
+    const double l_end = distance_at(c_end);
+    const double densest = l_end * one_minus_exp_over(std::abs(kappa) * l_end);
+    const float h = march_step_m(media, settings);
+    double wanted = std::ceil(densest / static_cast<double>(h));
+    if (!(wanted >= 1.0))
+        wanted = 1.0;
+    if (wanted > kMaxMarchSteps) {
+        wanted = kMaxMarchSteps;
+        ++counters.bounded_marches;
+    }
+    const int n = static_cast<int>(wanted);
+    const float u = rng.next_float();
+    for (int k = 0; k < n; ++k) {
+        // F^{-1}(v) = -log1p(-sigma' Z v) / sigma' (Z v when sigma' Z v -> 0).
+        const double zv = z * (k + static_cast<double>(u)) / n;
+        const double x_q = sigma_q * zv;
+        const double c_k = x_q == 0.0 ? zv : -std::log1p(-x_q) / sigma_q;
+        const double t = t0 + distance_at(c_k);
+        const Vec3 x = ray.at(static_cast<float>(t));
+        const double rho = fog->relative_density(x.y);
+        if (!(rho > 0.0))
+            continue;
+        ++counters.steps;
+        ++counters.density_lookups;
+        PointCoefficients coefficients;
+        coefficients.sigma_t = sigma_t * static_cast<float>(rho);
+        coefficients.sigma_s = sigma_s * static_cast<float>(rho);
+        Rgb direct(0.0f);
+        for (const MarchLight& m : march_lights) {
+            const Light& light = lights[m.index];
+            if (!m.directional) {
+                direct += scattered_direct_one(media, light, m.index, occlusion, x, 1u, wo,
+                                               settings, h, rng, counters, &coefficients);
+                continue;
+            }
+            const Rgb f = media.scattering(coefficients, x, 1u, m.mu);
+            direct += light_term(media, light, occlusion, x, m.incident, f, std::nullopt, settings,
+                                 h, rng, counters);
+        }
+        // direct holds sigma_s rho L: times T_c(c_k) / (rho q(c_k)) / N.
+        // In double: the weight alone can exceed a float where rho is tiny (direct is small).
+        for (int c = 0; c < 3; ++c)
+            result.radiance[c] += static_cast<float>(
+                static_cast<double>(direct[c]) * z / n *
+                std::exp((sigma_q - static_cast<double>(sigma_t[c])) * c_k) / rho);
+    }
+    return true;
+}
+
 VolumeResult march_single(const MediumSet& media, const std::vector<Light>& lights,
                           const OcclusionQuery* occlusion, const Ray& ray,
                           const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters) {
     VolumeResult fast;
     if (march_single_grid(media, lights, occlusion, ray, settings, rng, counters, fast))
+        return fast;
+    if (march_single_height_fog(media, lights, occlusion, ray, settings, rng, counters, fast))
         return fast;
     thread_local std::vector<MajorantSegment> segments;
     media.majorants(ray, segments);
