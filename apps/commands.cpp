@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
@@ -94,7 +95,7 @@ void add_render_command(CLI::App& root) {
     cmd->add_option("--spp", options->spp, "samples per pixel (overrides film.spp)")
         ->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--seed", options->seed, "random seed (overrides render.seed)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(int64_t{0}, std::numeric_limits<int64_t>::max()));
     cmd->add_option("--threads", options->threads, "worker threads (0: all)")
         ->check(CLI::Range(0, 1024));
     cmd->add_option("--res", options->res, "resolution WxH (overrides film.width/height)");
@@ -119,14 +120,9 @@ void add_render_command(CLI::App& root) {
         if (options->seed >= 0)
             scene_options.sets.push_back("/render/seed=" + std::to_string(options->seed));
         if (!options->res.empty()) {
-            int w = 0, h = 0;
-            char x = 0;
-            std::istringstream in(options->res);
-            if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 1 || h < 1) {
-                throw Error(ErrorKind::Usage, "--res expects WxH, got \"" + options->res + "\"");
-            }
-            scene_options.sets.push_back("/film/width=" + std::to_string(w));
-            scene_options.sets.push_back("/film/height=" + std::to_string(h));
+            const Resolution res = parse_resolution_arg(options->res);
+            scene_options.sets.push_back("/film/width=" + std::to_string(res.width));
+            scene_options.sets.push_back("/film/height=" + std::to_string(res.height));
         }
         // Overrides need their parent objects; create film/render when the scene omits them.
         StageTimes times;

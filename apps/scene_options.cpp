@@ -32,4 +32,16 @@ Vec3 parse_vec3_arg(const std::string& text, const std::string& option) {
     return v;
 }
 
+Resolution parse_resolution_arg(const std::string& text) {
+    Resolution r;
+    char x = 0;
+    std::istringstream in(text);
+    if (!(in >> r.width >> x >> r.height) || x != 'x' || !in.eof() || r.width < 1 || r.height < 1) {
+        throw Error(
+            ErrorKind::Usage,
+            "--res expects WxH, two whole numbers >= 1 (e.g. 640x360), got \"" + text + "\"");
+    }
+    return r;
+}
+
 }  // namespace kasumi

@@ -24,4 +24,11 @@ struct SceneOptions {
 /// Parses a command-line vector "X,Y,Z"; throws ErrorKind::Usage naming `option` otherwise.
 Vec3 parse_vec3_arg(const std::string& text, const std::string& option);
 
+/// Film size in pixels.
+struct Resolution {
+    int width = 0, height = 0;
+};
+/// Parses `--res WxH` (whole numbers >= 1); throws ErrorKind::Usage otherwise.
+Resolution parse_resolution_arg(const std::string& text);
+
 }  // namespace kasumi

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -51,13 +52,9 @@ std::vector<Override> render_overrides(const Options& o) {
     if (o.seed >= 0)
         sets.push_back("/render/seed=" + std::to_string(o.seed));
     if (!o.res.empty()) {
-        int w = 0, h = 0;
-        char x = 0;
-        std::istringstream in(o.res);
-        if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 1 || h < 1)
-            throw Error(ErrorKind::Usage, "--res expects WxH, got \"" + o.res + "\"");
-        sets.push_back("/film/width=" + std::to_string(w));
-        sets.push_back("/film/height=" + std::to_string(h));
+        const Resolution res = parse_resolution_arg(o.res);
+        sets.push_back("/film/width=" + std::to_string(res.width));
+        sets.push_back("/film/height=" + std::to_string(res.height));
     }
     std::vector<Override> overrides;
     for (const std::string& s : sets)
@@ -171,7 +168,7 @@ void add_sequence_command(CLI::App& root) {
     cmd->add_option("--spp", o->spp, "samples per pixel (overrides film.spp)")
         ->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--seed", o->seed, "random seed (overrides render.seed)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(int64_t{0}, std::numeric_limits<int64_t>::max()));
     cmd->add_option("--threads", o->threads, "worker threads (0: all)")->check(CLI::Range(0, 1024));
     cmd->add_option("--res", o->res, "resolution WxH (overrides film.width/height)");
     cmd->add_option("--aovs", o->aovs,

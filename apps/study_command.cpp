@@ -131,12 +131,9 @@ void add_study_command(CLI::App& root) {
         spec.spp = options->spp;
         spec.threads = options->threads;
         if (!options->res.empty()) {
-            std::istringstream in(options->res);
-            char x = 0;
-            if (!(in >> spec.width >> x >> spec.height) || x != 'x' || !in.eof() ||
-                spec.width < 1 || spec.height < 1) {
-                throw Error(ErrorKind::Usage, "--res expects WxH, got \"" + options->res + "\"");
-            }
+            const Resolution res = parse_resolution_arg(options->res);
+            spec.width = res.width;
+            spec.height = res.height;
         }
         spec.probe = study_probe(*options);
         spec.timing =

@@ -32,6 +32,16 @@ std::string make_temp_path(const std::string& path) {
 AtomicFile::AtomicFile(const std::string& path) : m_path(path) {
     if (path.empty() || path.back() == '/')
         throw_output_error("'" + path + "': not a file name");
+    // The rename would replace a device, FIFO or socket with a regular file (as root, `-o
+    // /dev/null` would delete the device node): refuse instead. A symbolic link is replaced
+    // itself, never its target, so it is allowed.
+    struct stat existing;
+    if (::lstat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode) &&
+        !S_ISLNK(existing.st_mode) && !S_ISDIR(existing.st_mode)) {
+        throw_output_error(path +
+                           ": not a regular file (a device, FIFO or socket); outputs are "
+                           "written to a temporary file renamed over the destination");
+    }
     // O_EXCL: never adopt (and later rename) a file someone else is writing.
     for (int attempt = 0;; ++attempt) {
         m_temp_path = make_temp_path(path);

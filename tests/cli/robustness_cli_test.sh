@@ -269,6 +269,18 @@ bad 2 "--size-m" make-cloud --res 8 --size-m 1e39 -o "$out/c.vdb"
 bad 2 "--frames" sequence "$s/all.json" --frames 5-2 -o "$out/f.####.exr" -q
 bad 2 "--theta-deg" phase eval --model hg --g 0.5 --theta-deg abc
 bad 3 "/g = 1.0: must be in \(-1, 1\)" phase eval --model hg --g 1 --theta-deg 0,90
+bad 2 "--res expects WxH, two whole numbers >= 1 \(e.g. 640x360\), got \"0x0\"" render "$s/all.json" --res 0x0 -o "$out/a.exr"
+bad 2 "--res expects WxH, two whole numbers >= 1" sequence "$s/all.json" --frames 0-1 --res 8 -o "$out/f.####.exr"
+bad 2 "--res expects WxH, two whole numbers >= 1" study "$s/all.json" --vary spp=1,2 --res -4x3 -o "$out/study"
+bad 2 "--spp: Value -1 not in range 1 to" render "$s/all.json" --spp -1 -o "$out/a.exr"
+bad 2 "--seed: Value -1 not in range 0 to 9223372036854775807$" render "$s/all.json" --seed -1 -o "$out/a.exr"
+bad 2 "--seed: Value -1 not in range 0 to 9223372036854775807$" sequence "$s/all.json" --frames 0-1 --seed -1 -o "$out/f.####.exr"
+bad 2 "-o \"$out/f.exr\": the output pattern needs a run of '#' for the frame number" \
+  sequence "$s/all.json" --frames 0-1 -o "$out/f.exr" -q
+# A wrong type deep in the scene: the pointer of the leaf, what it holds and what was expected.
+bad 3 "all.json: /media/0/phase = \[\"hg\"\]: expected an object" render "$s/all.json" --set '/media/0/phase=["hg"]' -o "$out/a.exr" -q
+bad 3 "all.json: /lights/0/color/1 = \"x\": expected a number" render "$s/all.json" --set '/lights/0/color=[1,"x",1]' -o "$out/a.exr" -q
+bad 3 "all.json: /media/1/file: no such file: .*nowhere/missing.vdb" render "$s/all.json" --set /media/1/file=nowhere/missing.vdb -o "$out/a.exr" -q
 
 # Outputs that cannot be written: 4, checked before rendering, and nothing else written.
 bad 4 "/proc/kasumi/a.exr: " render "$s/all.json" -o /proc/kasumi/a.exr -q
@@ -279,6 +291,26 @@ bad 4 "/proc/kasumi/c.vdb" make-cloud --res 8 -o /proc/kasumi/c.vdb
 bad 4 "/proc/kasumi" sequence "$s/all.json" --frames 0-1 -o "/proc/kasumi/f.####.exr" -q
 bad 4 "/proc/kasumi" study "$s/all.json" --vary spp=1,2 -o /proc/kasumi/study -q
 bad 4 "/proc/kasumi" phase plot --model hg --g 0.5 -o /proc/kasumi/hg.svg
+# An output directory that cannot be made (its parent is a file), and one that cannot be
+# written to (root writes anywhere, so only when not root).
+bad 4 "all.json/a.exr: cannot create directory .*all.json: Not a directory" render "$s/all.json" -o "$s/all.json/a.exr" -q
+bad 4 "all.json/f.0000.exr: cannot create directory" sequence "$s/all.json" --frames 0-1 -o "$s/all.json/f.####.exr" -q
+if [ "$(id -u)" -ne 0 ]; then
+  mkdir -p "$work/readonly" && chmod 555 "$work/readonly"
+  bad 4 "readonly/a.exr: cannot create a temporary file beside it: Permission denied" \
+    render "$s/all.json" -o "$work/readonly/a.exr" -q
+  [ -z "$(ls -A "$work/readonly")" ] || fail "files left in a read-only directory"
+fi
+# A FIFO (or a device) as output: refused, not replaced by the rename (as root, -o /dev/null
+# used to replace the device node with a regular file).
+mkfifo "$work/fifo.exr"
+bad 4 "fifo.exr: not a regular file \(a device, FIFO or socket\)" render "$s/all.json" -o "$work/fifo.exr" -q
+bad 4 "fifo.exr: not a regular file" render "$s/all.json" -o "$out/a.exr" --preview "$work/fifo.exr" -q
+[ -p "$work/fifo.exr" ] || fail "the FIFO output was replaced"
+if mknod "$work/null.exr" c 1 3 2>/dev/null; then
+  bad 4 "null.exr: not a regular file" render "$s/all.json" -o "$work/null.exr" -q
+  [ -c "$work/null.exr" ] || fail "a device node output was replaced by a file"
+fi
 
 # Scale invariance: lengths x s, sigma / s, point intensity x s^2 leave every radiance unchanged
 # (same random numbers, so only rounding differs). Absolute epsilons in ray offsets, marching or
