@@ -32,6 +32,10 @@ struct QualityPreset {
     double fog_rel_mse;     ///< fog study (fog_street.json)
     double cloud_rel_mse;   ///< cloud study (cloud.json)
     double shadow_rel_mse;  ///< soft-shadow study (soft_shadows.json)
+    /// render.volume.step_m with height fog (and no homogeneous medium: that one's step wins)
+    double height_fog_step_m;
+    const char* height_fog_estimator;  ///< render.volume.estimator, with height fog (no grid)
+    double height_fog_rel_mse;         ///< height-fog studies (fog_height.json)
 };
 
 const QualityPreset& quality_preset(QualityLevel level);
@@ -46,8 +50,9 @@ struct QualityChoice {
 };
 
 /// Reads /render/quality (if present) and writes the level's values into every key the
-/// document leaves unset: film.spp, render.volume.step_m (homogeneous media),
-/// render.volume.estimator (VDB media), samples of extended lights. Keys already present win.
+/// document leaves unset: film.spp, render.volume.step_m (homogeneous media, else height fog),
+/// render.volume.estimator (VDB media, else height fog), samples of extended lights. Keys
+/// already present win.
 /// Throws ErrorKind::Input naming `file` and /render/quality for an unknown level.
 QualityChoice apply_quality(Json& doc, const std::string& file);
 

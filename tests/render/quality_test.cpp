@@ -31,6 +31,7 @@ TEST(Quality, LevelsGrowMonotonically) {
         const QualityPreset& hi = quality_preset(static_cast<QualityLevel>(i));
         EXPECT_GE(hi.spp, lo.spp);
         EXPECT_LE(hi.fog_step_m, lo.fog_step_m);
+        EXPECT_LE(hi.height_fog_step_m, lo.height_fog_step_m);
         EXPECT_GE(hi.light_samples, lo.light_samples);
         EXPECT_LE(hi.single_scattering_tolerance, lo.single_scattering_tolerance);
     }
@@ -56,6 +57,40 @@ TEST(Quality, FillsOnlyUnsetKeys) {
     EXPECT_EQ(doc["lights"][2]["samples"].get<int>(), 3);         // the scene's wins
     EXPECT_FALSE(doc["render"]["volume"].contains("estimator"));  // no grid
     EXPECT_EQ(c.kept.size(), 2u);
+}
+
+// Height fog: the level sets its step and estimator (march: closed-form transmittance, the
+// height-fog studies' choice) unless the scene gives them; a homogeneous medium's step and a
+// grid's estimator take precedence (the set then takes the general paths they were measured on);
+// the plan's expected error names the height-fog figure.
+TEST(Quality, HeightFogTakesItsOwnStepAndEstimator) {
+    const std::string fog = R"({"type": "height_fog", "sigma_s": 0.1, "scale_height_m": 5})";
+    const QualityPreset& p = quality_preset(QualityLevel::Default);
+    Json doc = doc_with(R"({"media": [)" + fog + R"(], "render": {"quality": "default"}})");
+    QualityChoice c = apply_quality(doc, "test.json");
+    EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(), p.height_fog_step_m);
+    EXPECT_EQ(doc["render"]["volume"]["estimator"].get<std::string>(), p.height_fog_estimator);
+    EXPECT_EQ(std::string(p.height_fog_estimator), "march");
+    EXPECT_NE(c.expected_error.find("height fog"), std::string::npos) << c.expected_error;
+
+    doc = doc_with(R"({"media": [)" + fog +
+                   R"(], "render": {"quality": "draft", "volume": {"estimator": "ratio"}}})");
+    c = apply_quality(doc, "test.json");
+    EXPECT_EQ(doc["render"]["volume"]["estimator"].get<std::string>(), "ratio");
+    EXPECT_EQ(c.kept, std::vector<std::string>{"/render/volume/estimator"});
+
+    doc =
+        doc_with(R"({"media": [)" + fog +
+                 R"(, {"type": "homogeneous", "sigma_s": 0.1}], "render": {"quality": "final"}})");
+    apply_quality(doc, "test.json");
+    EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(),
+              quality_preset(QualityLevel::Final).fog_step_m);
+
+    doc = doc_with(R"({"media": [)" + fog +
+                   R"(, {"type": "vdb", "file": "x.vdb"}], "render": {"quality": "final"}})");
+    apply_quality(doc, "test.json");
+    EXPECT_EQ(doc["render"]["volume"]["estimator"].get<std::string>(),
+              quality_preset(QualityLevel::Final).grid_estimator);
 }
 
 TEST(Quality, AbsentLevelChangesNothing) {
