@@ -32,6 +32,23 @@ study() {  # NAME SCENE ARGS...
 study fog data/scenes/fog_street.json --res 96x54 --repeats 3 \
   --vary /render/volume/step_m=1.6,0.8,0.4,0.2 --vary spp=1,4,16 --reference-spp 256
 
+# Height fog (data/scenes/fog_height.json), single scattering: the march of a lone height fog
+# (nodes stratified in the closed-form column, unbiased) step x spp, against the march at 1 m
+# and 256 spp; then the march at 4 m against the trackers (one free-flight point per path); then
+# multiple scattering, transmittance estimator x spp (march: the closed form), against residual
+# ratio tracking at 1024 spp.
+study fog-height data/scenes/fog_height.json --res 96x54 --repeats 3 \
+  --set /render/volume/estimator=march --vary /render/volume/step_m=16,4,1,0.25 \
+  --vary spp=1,4,16 --reference-set /render/volume/step_m=1 --reference-spp 256
+study fog-height-estimator data/scenes/fog_height.json --res 96x54 --repeats 3 \
+  --set /render/volume/step_m=4 --vary /render/volume/estimator=march,delta,ratio,residual-ratio \
+  --vary spp=1,4,16 --reference-set /render/volume/estimator=march \
+  --reference-set /render/volume/step_m=1 --reference-spp 256
+study fog-height-multiple data/scenes/fog_height.json --res 96x54 --repeats 3 \
+  --set /render/volume/integrator=multiple \
+  --vary /render/volume/estimator=march,delta,ratio,residual-ratio --vary spp=1,4,16 \
+  --reference-set /render/volume/estimator=residual-ratio --reference-spp 1024
+
 # Cloud, multiple scattering: transmittance estimator x spp.
 study cloud-estimator data/scenes/cloud.json --res 96x54 --repeats 3 \
   --vary /render/volume/estimator=march,delta,ratio,residual-ratio --vary spp=1,4,16 \

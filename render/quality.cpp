@@ -49,13 +49,13 @@ namespace {
 //   supported there.
 // - Height fog (docs/studies/fog-height*, data/scenes/fog_height.json, 2026-11-30): the march
 //   of a lone height fog is unbiased at any step (volume_path.cpp, march_single_height_fog) and
-//   4 m is the most efficient step at every spp (efficiency at 1 / 4 / 16 spp: 3.5e4 / 3.7e4 /
-//   3.0e4 /s at 4 m; 2.5e4 / 2.6e4 / 2.8e4 at 16 m; 1.1e4 / 1.2e4 / 1.0e4 at 1 m), so draft,
+//   4 m is the most efficient step at every spp (efficiency at 1 / 4 / 16 spp: 1.8e4 / 2.1e4 /
+//   1.5e4 /s at 4 m; 1.6e4 / 1.0e4 / 1.2e4 at 16 m; 6.3e3 / 7.5e3 / 5.4e3 at 1 m), so draft,
 //   default and final take 4 m, reference 1 m (the study's reference). Estimator: march, the
-//   most efficient in single scattering (4 m at 16 spp: 3.0e4 /s against 134 for residual
-//   ratio, 120 delta, 102 ratio: the trackers gather light at one free-flight point per path)
+//   most efficient in single scattering (4 m at 16 spp: 1.2e4 /s against 79 for residual
+//   ratio, 66 delta, 65 ratio: the trackers gather light at one free-flight point per path)
 //   and in multiple scattering, where it means the closed-form transmittance for next-event
-//   estimation (16 spp: 77 /s against 43 residual ratio, 42 delta, 41 ratio). Expected errors:
+//   estimation (16 spp: 70 /s against 35 residual ratio, 39 delta, 35 ratio). Expected errors:
 //   draft renders fog_height.json with single scattering (tolerance any), 2.4e-4 at 4 spp
 //   against the single-scattering answer (the plan's bound states what it leaves out); the
 //   other levels choose multiple scattering there: 0.088 at 16 spp, /4 at 64 (1.37 / 0.337 /
