@@ -178,11 +178,7 @@ TEST(VdbDirectRead, ActiveTilesAndNegativeCoordinates) {
 }
 
 TEST(VdbDirectRead, EmptyGridAndNamedGrid) {
-    DenseVoxels v;
-    v.dims = IVec3(4);
-    v.values.assign(64, 0.0f);
-    const std::string path = test::temp_grid_path("direct_empty");
-    write_fog_volume(path, "smoke", v, 1.0, Vec3(0.0f));
+    const std::string path = test::write_box("direct_empty", 4, 0.0f, 1.0, Vec3(0.0f), "smoke");
     const std::optional<LoadedGrid> direct = read_density_grid_direct(path, "");
     ASSERT_TRUE(direct);  // no "density": the first float grid, as OpenVDB's path picks
     EXPECT_EQ(direct->grid_name, "smoke");

@@ -127,11 +127,7 @@ TEST(VdbTransform, VoxelSizeTranslateRotateScaleAgree) {
 }
 
 TEST(VdbEdgeCases, EmptyGridAndZeroDensityAreClear) {
-    DenseVoxels zeros;
-    zeros.dims = IVec3(8);
-    zeros.values.assign(512, 0.0f);
-    const std::string empty = test::temp_grid_path("empty");
-    write_fog_volume(empty, "density", zeros, 1.0, Vec3(0.0f));
+    const std::string empty = write_box("empty", 8, 0.0f, 1.0);
     const std::string box = write_box("box8", 8, 1.0f, 1.0);
     const Ray ray{Vec3(-5.0f, 3.5f, 3.5f), Vec3(1, 0, 0), 0.0f, kInfinity};
     for (const MediumSet& media : {MediumSet({vdb_medium(empty, {{"density_scale", 5.0}})}),
