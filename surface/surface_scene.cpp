@@ -30,6 +30,9 @@ struct Geometry {
     std::vector<std::array<uint32_t, 3>> triangles;
     DVec3 center{0.0};
     double radius = 0.0;
+    /// Spheres: the centre in float and the squared reach of line_may_meet_sphere's test.
+    Vec3 center_float{0.0f};
+    float reach_squared = 0.0f;
     uint32_t material = 0;
 };
 
@@ -46,6 +49,10 @@ Geometry make_geometry(const SphereShape& s) {
     g.is_sphere = true;
     g.center = DVec3(s.center);
     g.radius = s.radius;
+    g.center_float = Vec3(g.center);
+    const float radius = static_cast<float>(g.radius);
+    const float reach = radius + 1e-6f * (max_abs_coordinate(g.center_float) + radius);
+    g.reach_squared = reach * reach;
     return g;
 }
 
@@ -108,12 +115,36 @@ PacketRay packet_ray(RTCRayN* ray, unsigned N, unsigned i) {
             RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i)};
 }
 
+/// False only when the line of ray i passes clear of the sphere by far more than float
+/// rounding, so the exact test (intersect_sphere, in double) would miss it too. Embree calls a
+/// user geometry for every ray that reaches its BVH leaf, and a scene with one sphere has a
+/// leaf for a root: without this every camera ray of a scene paid the double-precision test,
+/// most of them missing the sphere by metres.
+///
+/// In float, from the float ray: f = c − o; the squared distance of the centre from the line is
+/// (f·f d·d − (f·d)²) / d·d. Errors against the exact value (ε = 2^-24): rounding the double
+/// centre to float moves the centre by at most √3 ε ‖c‖∞ and the subtraction f by √3 ε ‖f‖∞,
+/// which move the distance as much (it is 1-Lipschitz in the centre); the products and the
+/// cancellation f·f d·d − (f·d)² err by at most ~8 ε f·f d·d. The test keeps every ray with
+/// distance² ≤ (r + m)² + 1e-5 f·f, m = 1e-6 (‖c‖∞ + r): the 1e-5 f·f term exceeds the
+/// product error 100-fold and the ‖f‖ shift (2 r √3 ε ‖f‖ ≤ √3 ε (r² + f·f)) with the 2 r m
+/// term, and m exceeds the centre shift 5-fold or more. So a ray dropped here misses in exact
+/// arithmetic too, by far more than the double test's own rounding.
+inline bool line_may_meet_sphere(const Geometry& g, RTCRayN* ray, unsigned N, unsigned i) {
+    const Vec3 f = g.center_float - Vec3(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i),
+                                         RTCRayN_org_z(ray, N, i));
+    const Vec3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+    const float dd = glm::dot(d, d), b = glm::dot(f, d), ff = glm::dot(f, f);
+    // NaN and degenerate directions compare false and are kept: the exact test decides.
+    return !(ff * dd - b * b > (g.reach_squared + 1e-5f * ff) * dd);
+}
+
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
     const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
     for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i])
+        if (!args->valid[i] || !line_may_meet_sphere(*g, ray, args->N, i))
             continue;
         const PacketRay r = packet_ray(ray, args->N, i);
         const std::optional<double> t =
@@ -137,7 +168,7 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
     const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
     RTCRayN* ray = args->ray;
     for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i])
+        if (!args->valid[i] || !line_may_meet_sphere(*g, ray, args->N, i))
             continue;
         const PacketRay r = packet_ray(ray, args->N, i);
         if (intersect_sphere(g->center, g->radius, r.origin, r.direction, r.t_near, r.t_far))
