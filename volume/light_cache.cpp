@@ -47,11 +47,15 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
     // along c, so they are computed once per column and per row (the same float operations as
     // per point: the cache is bit-identical to the per-point form). A corner outside the
     // lattice adds nothing (the ray has left the box, which it never re-enters).
+    // Each corner's offset in the upstream slice along the axis and its weight; a corner
+    // outside the lattice gets weight 0 (and an offset inside): its term 0 · w · D = +0 adds
+    // nothing, bit for bit what skipping it did (D >= 0, finite), without a branch.
     struct Axis {
-        int i0;      ///< lower lattice index, may be -1 or the last index
-        float w[2];  ///< weights of i0 and i0 + 1
-        bool in[2];  ///< i0, i0 + 1 inside the lattice
+        size_t offset[2];  ///< lattice offsets of i0 and i0 + 1 (clamped into the lattice)
+        float w[2];        ///< weights of i0 and i0 + 1; 0 outside the lattice
     };
+    const size_t stride[3] = {1, static_cast<size_t>(m_dims.x),
+                              static_cast<size_t>(m_dims.x) * static_cast<size_t>(m_dims.y)};
     const auto axis_table = [&](int axis) {
         std::vector<Axis> table(static_cast<size_t>(m_dims[axis]));
         for (int i = 0; i < m_dims[axis]; ++i) {
@@ -60,17 +64,17 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
             const int iu = static_cast<int>(fu);
             const float tu = u - fu;
             Axis& e = table[static_cast<size_t>(i)];
-            e.i0 = iu;
-            e.w[0] = 1.0f - tu;
-            e.w[1] = tu;
-            e.in[0] = iu >= 0 && iu < m_dims[axis];
-            e.in[1] = iu + 1 >= 0 && iu + 1 < m_dims[axis];
+            const float w[2] = {1.0f - tu, tu};
+            for (int k = 0; k < 2; ++k) {
+                const bool in = iu + k >= 0 && iu + k < m_dims[axis];
+                e.w[k] = in ? w[k] : 0.0f;
+                e.offset[k] =
+                    static_cast<size_t>(std::clamp(iu + k, 0, m_dims[axis] - 1)) * stride[axis];
+            }
         }
         return table;
     };
     const std::vector<Axis> along_b = axis_table(b), along_c = axis_table(c);
-    const size_t stride[3] = {1, static_cast<size_t>(m_dims.x),
-                              static_cast<size_t>(m_dims.x) * static_cast<size_t>(m_dims.y)};
     // The three densities of a point (at x, the midpoint x + step / 2 and q = x + step) are
     // grid lookups whose coordinates, axis by axis, depend on that axis's lattice index alone
     // (x = lower + cell p per component): they are split once per lattice index and axis
@@ -112,34 +116,56 @@ LightTransmittanceCache::LightTransmittanceCache(const VdbMedium& medium, const 
             sm[axis] = split_m[axis].data();
             sq[axis] = split_q[axis].data();
         }
+        // The split of axis K among the slice's (along A), the row's and the point's.
+        const auto pick = [](auto k, const Split& along_a, const Split& outer,
+                             const Split& inner) -> const Split& {
+            constexpr int K = decltype(k)::value;
+            if constexpr (K == A)
+                return along_a;
+            else if constexpr (K == kOuter)
+                return outer;
+            else
+                return inner;
+        };
+        using K0 = std::integral_constant<int, 0>;
+        using K1 = std::integral_constant<int, 1>;
+        using K2 = std::integral_constant<int, 2>;
+        const Axis* const table_b = along_b.data();
+        const Axis* const table_c = along_c.data();
         for (int slice = first; slice >= 0 && slice < m_dims[A]; slice -= toward) {
             const int upstream = slice + toward;
             const bool inside = upstream >= 0 && upstream < m_dims[A];
             const float* row = m_d.data() + static_cast<size_t>(inside ? upstream : 0) * stride[A];
-            IVec3 p;
+            const Split xa = sx[A][slice], ma = sm[A][slice], qa = sq[A][slice];
+            IVec3 p(0);
             p[A] = slice;
             for (p[kOuter] = 0; p[kOuter] < m_dims[kOuter]; ++p[kOuter]) {
-                for (p[kInner] = 0; p[kInner] < m_dims[kInner]; ++p[kInner]) {
-                    const float rho_p =
-                        grid.density_split<kFlatX>(sx[0][p.x], sx[1][p.y], sx[2][p.z]);
-                    const float rho_m =
-                        grid.density_split<kFlatA>(sm[0][p.x], sm[1][p.y], sm[2][p.z]);
-                    const float rho_q =
-                        grid.density_split<kFlatA>(sq[0][p.x], sq[1][p.y], sq[2][p.z]);
+                const Split xo = sx[kOuter][p[kOuter]], mo = sm[kOuter][p[kOuter]],
+                            qo = sq[kOuter][p[kOuter]];
+                float* out = &at(p);
+                for (int i = 0; i < m_dims[kInner]; ++i) {
+                    const Split& xi = sx[kInner][i];
+                    const Split& mi = sm[kInner][i];
+                    const Split& qi = sq[kInner][i];
+                    const float rho_p = grid.density_split<kFlatX>(
+                        pick(K0{}, xa, xo, xi), pick(K1{}, xa, xo, xi), pick(K2{}, xa, xo, xi));
+                    const float rho_m = grid.density_split<kFlatA>(
+                        pick(K0{}, ma, mo, mi), pick(K1{}, ma, mo, mi), pick(K2{}, ma, mo, mi));
+                    const float rho_q = grid.density_split<kFlatA>(
+                        pick(K0{}, qa, qo, qi), pick(K1{}, qa, qo, qi), pick(K2{}, qa, qo, qi));
                     float upstream_d = 0.0f;
                     if (inside) {
-                        const Axis& eu = along_b[static_cast<size_t>(p[B])];
-                        const Axis& ev = along_c[static_cast<size_t>(p[C])];
+                        const int pb = B == kInner ? i : p[kOuter],
+                                  pc = C == kInner ? i : p[kOuter];
+                        const Axis& eu = table_b[static_cast<size_t>(pb)];
+                        const Axis& ev = table_c[static_cast<size_t>(pc)];
                         for (int dv = 0; dv < 2; ++dv)
-                            for (int du = 0; du < 2; ++du) {
-                                if (!eu.in[du] || !ev.in[dv])
-                                    continue;
-                                upstream_d += eu.w[du] * ev.w[dv] *
-                                              row[static_cast<size_t>(eu.i0 + du) * stride[B] +
-                                                  static_cast<size_t>(ev.i0 + dv) * stride[C]];
-                            }
+                            for (int du = 0; du < 2; ++du)
+                                upstream_d +=
+                                    eu.w[du] * ev.w[dv] * row[eu.offset[du] + ev.offset[dv]];
                     }
-                    at(p) = upstream_d + length_m * (rho_p + 4.0f * rho_m + rho_q) * (1.0f / 6.0f);
+                    out[static_cast<size_t>(i) * stride[kInner]] =
+                        upstream_d + length_m * (rho_p + 4.0f * rho_m + rho_q) * (1.0f / 6.0f);
                 }
             }
         }
