@@ -33,8 +33,44 @@ struct Geometry {
     /// Spheres: the centre in float and the squared reach of line_may_meet_sphere's test.
     Vec3 center_float{0.0f};
     float reach_squared = 0.0f;
+    /// Triangles of small geometries (boxes, quads, meshes up to kFaceTableMax triangles): the
+    /// unit normal in double and the error scale hit_from would compute at every hit (a zero
+    /// normal for a degenerate triangle: computed at the hit instead); empty otherwise.
+    std::vector<DVec3> face_normals;
+    std::vector<float> face_error_scales;
     uint32_t material = 0;
 };
+
+/// Up to this many triangles a geometry keeps its face table (28 bytes a triangle).
+constexpr size_t kFaceTableMax = size_t{1} << 16;
+
+/// The unit normal of triangle `tri` in double, zero when degenerate (exactly as hit_from
+/// computed it at every hit before the table).
+DVec3 face_normal(const Geometry& g, const std::array<uint32_t, 3>& tri) {
+    const DVec3 v0(g.positions[tri[0]]);
+    const DVec3 v1(g.positions[tri[1]]);
+    const DVec3 v2(g.positions[tri[2]]);
+    const DVec3 cross = glm::cross(v1 - v0, v2 - v0);
+    const double area2 = glm::length(cross);
+    return area2 > 0.0 ? cross / area2 : DVec3(0.0);
+}
+
+float face_error_scale(const Geometry& g, const std::array<uint32_t, 3>& tri) {
+    return max_abs_coordinate(
+        glm::max(glm::abs(g.positions[tri[0]]),
+                 glm::max(glm::abs(g.positions[tri[1]]), glm::abs(g.positions[tri[2]]))));
+}
+
+void build_face_table(Geometry& g) {
+    if (g.is_sphere || g.triangles.size() > kFaceTableMax)
+        return;
+    g.face_normals.reserve(g.triangles.size());
+    g.face_error_scales.reserve(g.triangles.size());
+    for (const auto& tri : g.triangles) {
+        g.face_normals.push_back(face_normal(g, tri));
+        g.face_error_scales.push_back(face_error_scale(g, tri));
+    }
+}
 
 void add_quad(Geometry& g, const Vec3& v0, const Vec3& v1, const Vec3& v2, const Vec3& v3) {
     const auto base = static_cast<uint32_t>(g.positions.size());
@@ -311,6 +347,7 @@ SurfaceScene::SurfaceScene(const std::vector<Shape>& shapes) : m_impl(std::make_
         g.shading = shading_of(shape);
         if (!g.is_sphere && g.shading != Shading::Flat && g.normals.empty())
             g.normals = angle_weighted_normals(g.positions, g.triangles);
+        build_face_table(g);
     }
     // The geometries' addresses are stable from here on: Embree keeps pointers to spheres.
     for (size_t id = 0; id < impl.geometries.size(); ++id) {
@@ -440,18 +477,13 @@ std::optional<SurfaceHit> SurfaceScene::hit_from(const Ray& ray, const RTCRayHit
     hit.v = rayhit.hit.v;
     const auto& tri = g.triangles[rayhit.hit.primID];
     const DVec3 v0(g.positions[tri[0]]);
-    const DVec3 v1(g.positions[tri[1]]);
-    const DVec3 v2(g.positions[tri[2]]);
-    const DVec3 cross = glm::cross(v1 - v0, v2 - v0);
-    const double area2 = glm::length(cross);
-    DVec3 n = area2 > 0.0
-                  ? cross / area2
-                  : glm::normalize(DVec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
+    const bool tabled = !g.face_normals.empty();
+    DVec3 n = tabled ? g.face_normals[rayhit.hit.primID] : face_normal(g, tri);
+    if (n == DVec3(0.0))  // degenerate: Embree's normal
+        n = glm::normalize(DVec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
     // Project onto the triangle's plane: removes the error t carries along the ray.
     hit.position = Vec3(p - glm::dot(p - v0, n) * n);
-    hit.error_scale = max_abs_coordinate(
-        glm::max(glm::abs(g.positions[tri[0]]),
-                 glm::max(glm::abs(g.positions[tri[1]]), glm::abs(g.positions[tri[2]]))));
+    hit.error_scale = tabled ? g.face_error_scales[rayhit.hit.primID] : face_error_scale(g, tri);
     hit.shading_normal = Vec3(n);
     if (!g.normals.empty()) {
         const Vec3 interpolated = kasumi::interpolate<Vec3>(
