@@ -165,6 +165,16 @@ void add_render_command(CLI::App& root) {
                     : options->preview;
         }
 
+        if (!paths.preview.empty()) {
+            check_distinct_outputs(
+                paths.exr, paths.preview,
+                options->preview.empty()
+                    ? "-o " + paths.exr +
+                          ": its preview PNG beside it would have the same name; name the EXR "
+                          "*.exr, or give --preview FILE or --no-preview"
+                    : "--preview " + paths.preview +
+                          " is the EXR output (-o) too: give the preview another name");
+        }
         // Before the work: a render must not end in "cannot write" hours later.
         check_output_writable(paths.exr);
         if (!paths.preview.empty())

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 
+#include <filesystem>
 #include <sstream>
 
 namespace kasumi {
@@ -42,6 +43,20 @@ Resolution parse_resolution_arg(const std::string& text) {
             "--res expects WxH, two whole numbers >= 1 (e.g. 640x360), got \"" + text + "\"");
     }
     return r;
+}
+
+void check_distinct_outputs(const std::string& a, const std::string& b,
+                            const std::string& message) {
+    const auto normal = [](const std::string& p) {
+        // Absolute first: weakly_canonical leaves a relative path relative when none of it
+        // exists yet.
+        const std::filesystem::path absolute = std::filesystem::absolute(p);
+        std::error_code ec;
+        const std::filesystem::path resolved = std::filesystem::weakly_canonical(absolute, ec);
+        return (ec ? absolute : resolved).lexically_normal();
+    };
+    if (normal(a) == normal(b))
+        throw Error(ErrorKind::Usage, message);
 }
 
 }  // namespace kasumi

@@ -31,4 +31,8 @@ struct Resolution {
 /// Parses `--res WxH` (whole numbers >= 1); throws ErrorKind::Usage otherwise.
 Resolution parse_resolution_arg(const std::string& text);
 
+/// Throws ErrorKind::Usage with `message` when output paths `a` and `b` name the same file
+/// (compared absolute, with what exists of them resolved): one write would replace the other.
+void check_distinct_outputs(const std::string& a, const std::string& b, const std::string& message);
+
 }  // namespace kasumi

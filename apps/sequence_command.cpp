@@ -76,6 +76,13 @@ void run(const Options& o) {
     s.cancel = &g_cancel;
     s.metadata = {{"version", version_string()}};
     parse_output_format(o.aovs, o.compression, s.aovs, s.compression);
+    if (!o.preview_dir.empty()) {
+        check_distinct_outputs(frame_path(o.output, 0),
+                               frame_preview_path(o.output, o.preview_dir, 0),
+                               "-o " + o.output + " and --preview-dir " + o.preview_dir +
+                                   ": each frame's preview PNG would replace its EXR; name the "
+                                   "EXRs *.exr or give another --preview-dir");
+    }
     if (o.frames.empty() && o.frame < 0)
         throw Error(ErrorKind::Usage, "sequence needs --frames A-B[:step] or --frame N");
     if (o.frame >= 0) {

@@ -277,6 +277,10 @@ bad 2 "--seed: Value -1 not in range 0 to 9223372036854775807$" render "$s/all.j
 bad 2 "--seed: Value -1 not in range 0 to 9223372036854775807$" sequence "$s/all.json" --frames 0-1 --seed -1 -o "$out/f.####.exr"
 bad 2 "-o \"$out/f.exr\": the output pattern needs a run of '#' for the frame number" \
   sequence "$s/all.json" --frames 0-1 -o "$out/f.exr" -q
+# Two outputs with one name: the preview would replace the EXR (it did, silently).
+bad 2 "-o .*a.png: its preview PNG beside it would have the same name" render "$s/all.json" -o "$out/a.png" -q
+bad 2 "--preview .*is the EXR output \(-o\) too" render "$s/all.json" -o "$out/a.exr" --preview "$out/sub/../a.exr" -q
+bad 2 "each frame's preview PNG would replace its EXR" sequence "$s/all.json" --frames 0-1 -o "$out/f.####.png" --preview-dir "$out" -q
 # A wrong type deep in the scene: the pointer of the leaf, what it holds and what was expected.
 bad 3 "all.json: /media/0/phase = \[\"hg\"\]: expected an object" render "$s/all.json" --set '/media/0/phase=["hg"]' -o "$out/a.exr" -q
 bad 3 "all.json: /lights/0/color/1 = \"x\": expected a number" render "$s/all.json" --set '/lights/0/color=[1,"x",1]' -o "$out/a.exr" -q
