@@ -234,6 +234,9 @@ Plan make_plan(const SceneDesc& scene) {
     plan.in_scattering = has_media && media_scatter && lit;
     const bool exact_stretches = MediumSet(scene.media).all_homogeneous() &&
                                  volume.estimator == Estimator::March && !multiple;
+    const bool lone_height_fog = scene.media.size() == 1 &&
+                                 std::holds_alternative<HeightFogMedium>(scene.media[0].model) &&
+                                 volume.estimator == Estimator::March && !multiple;
     plan.stages.push_back(
         {"volume-in-scattering", plan.in_scattering,
          !plan.in_scattering ? (!has_media       ? "no media"
@@ -242,6 +245,12 @@ Plan make_plan(const SceneDesc& scene) {
                                                  : "no lights to scatter")
          : exact_stretches
              ? "single scattering, marched with step " + std::to_string(volume.step_m) + " m" +
+                   (plan.shadow_rays ? ", shadowed by surfaces" : "")
+         : lone_height_fog
+             ? "single scattering, march of the height fog: nodes stratified in its closed-form "
+               "column (step " +
+                   std::to_string(volume.step_m) +
+                   " m where the ray's fog is densest; unbiased), exact transmittance" +
                    (plan.shadow_rays ? ", shadowed by surfaces" : "")
          : volume.estimator == Estimator::March && !multiple
              ? "single scattering, fixed-step march (" + std::to_string(volume.step_m) +

@@ -2,6 +2,7 @@
 // input errors, and the single-scattering bound omega p / (1 - omega p) with its exact inputs.
 #include "render/quality.h"
 #include "core/error.h"
+#include "render/plan.h"
 #include "render/scene_loader.h"
 #include "volume/medium.h"
 
@@ -91,6 +92,29 @@ TEST(Quality, HeightFogTakesItsOwnStepAndEstimator) {
     apply_quality(doc, "test.json");
     EXPECT_EQ(doc["render"]["volume"]["estimator"].get<std::string>(),
               quality_preset(QualityLevel::Final).grid_estimator);
+}
+
+// The plan of a lone height fog at draft: the level's choices, the studies' expected error, and
+// the stratified march named as what runs (single scattering: draft's tolerance is any).
+TEST(Quality, PlanNamesTheHeightFogChoice) {
+    const SceneDesc desc = parse_scene(doc_with(R"({
+      "lights": [{"type": "directional", "direction": [0, -1, 0], "illuminance_lux": 1}],
+      "media": [{"type": "height_fog", "sigma_a": 0.0, "sigma_s": 0.1, "scale_height_m": 5}],
+      "render": {"quality": "draft"}})"),
+                                       "test.json");
+    const Plan plan = make_plan(desc);
+    std::string quality, in_scattering;
+    for (const PlanStage& s : plan.stages) {
+        if (s.name == "quality")
+            quality = s.reason;
+        if (s.name == "volume-in-scattering")
+            in_scattering = s.reason;
+    }
+    EXPECT_NE(quality.find("/render/volume/estimator = \"march\""), std::string::npos) << quality;
+    EXPECT_NE(quality.find("/render/volume/step_m = 4"), std::string::npos) << quality;
+    EXPECT_NE(quality.find("height fog 0.000244"), std::string::npos) << quality;
+    EXPECT_NE(in_scattering.find("stratified in its closed-form column"), std::string::npos)
+        << in_scattering;
 }
 
 TEST(Quality, AbsentLevelChangesNothing) {
