@@ -1,5 +1,6 @@
 #include "volume/volume_path.h"
 
+#include "volume/equiangular.h"
 #include "volume/light_cache.h"
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"
@@ -360,6 +361,8 @@ bool march_single_height_fog(const MediumSet& media, const std::vector<Light>& l
     const Vec3 wo = -ray.direction;
     thread_local std::vector<MarchLight> march_lights;
     march_lights.clear();
+    thread_local std::vector<size_t> point_lights;
+    point_lights.clear();
     double sun_y = 0.0;
     float sun_luminance = 0.0f;
     for (size_t i = 0; i < lights.size(); ++i) {
@@ -376,6 +379,9 @@ bool march_single_height_fog(const MediumSet& media, const std::vector<Light>& l
                 sun_luminance = y;
                 sun_y = m.incident.wi.y;
             }
+        } else if (std::holds_alternative<PointLight>(lights[i].emitter)) {
+            point_lights.push_back(i);  // equiangular samples of their own (below)
+            continue;
         }
         march_lights.push_back(m);
     }
@@ -408,7 +414,7 @@ bool march_single_height_fog(const MediumSet& media, const std::vector<Light>& l
     }
     const int n = static_cast<int>(wanted);
     const float u = rng.next_float();
-    for (int k = 0; k < n; ++k) {
+    for (int k = 0; k < n && !march_lights.empty(); ++k) {
         // F^{-1}(v) = -log1p(-sigma' Z v) / sigma' (Z v when sigma' Z v -> 0).
         const double zv = z * (k + static_cast<double>(u)) / n;
         const double x_q = sigma_q * zv;
@@ -441,6 +447,39 @@ bool march_single_height_fog(const MediumSet& media, const std::vector<Light>& l
             result.radiance[c] += static_cast<float>(
                 static_cast<double>(direct[c]) * z / n *
                 std::exp((sigma_q - static_cast<double>(sigma_t[c])) * c_k) / rho);
+    }
+    // Point lights: N stratified equiangular distances over the same stretch [t0, t0 + l_end]
+    // (Kulla & Fajardo 2012, volume/equiangular.h: the pdf is the light's inverse square), each
+    // weighted by the exact camera transmittance (closed-form column from t0) over its pdf; the
+    // light's term (sigma_s rho p I / r^2 T_light V) as at any node. Unbiased for that stretch.
+    for (const size_t i : point_lights) {
+        const auto& point = std::get<PointLight>(lights[i].emitter);
+        const float ta = static_cast<float>(t0), tb = static_cast<float>(t0 + l_end);
+        if (!(tb > ta))
+            continue;
+        const EquiangularSegment segment =
+            make_equiangular(ray.origin, ray.direction, point.position, ta, tb);
+        const float v = rng.next_float();
+        for (int k = 0; k < n; ++k) {
+            const float t = segment.sample((static_cast<float>(k) + v) / static_cast<float>(n));
+            const float pdf = segment.pdf(t);
+            if (!(pdf > 0.0f) || !(t >= ta && t <= tb))
+                continue;
+            const Vec3 x = ray.at(t);
+            const double rho = fog->relative_density(x.y);
+            ++counters.steps;
+            ++counters.density_lookups;
+            PointCoefficients coefficients;
+            coefficients.sigma_t = sigma_t * static_cast<float>(rho);
+            coefficients.sigma_s = sigma_s * static_cast<float>(rho);
+            const Rgb direct = scattered_direct_one(media, lights[i], i, occlusion, x, 1u, wo,
+                                                    settings, h, rng, counters, &coefficients);
+            const double c_t = height_fog_column(*fog, oy, dy, t0, static_cast<double>(t));
+            for (int c = 0; c < 3; ++c)
+                result.radiance[c] += static_cast<float>(
+                    static_cast<double>(direct[c]) *
+                    std::exp(-static_cast<double>(sigma_t[c]) * c_t) / (double(pdf) * n));
+        }
     }
     return true;
 }

@@ -385,6 +385,72 @@ TEST(HeightFog, MarchedSingleScatteringIsUnbiasedAtCoarseSteps) {
     }
 }
 
+// Point lights in the march of a lone height fog take stratified equiangular distances with
+// exact camera transmittance: the mean of 2000 marches at a coarse step matches a Simpson
+// quadrature (2e5 intervals) of int sigma_s,c rho p(mu) I / r^2 T_cam,c T_light,c dt along a ray
+// passing 1.5 m from the light within 5 standard errors per channel (false-failure rate ~6e-7
+// per check), with a relative spread per march below 10% (the light sampled at the column-
+// stratified nodes instead, as before: 21%, measured).
+TEST(HeightFog, MarchedPointLightIsEquiangularAndUnbiased) {
+    HeightFogMedium m;
+    m.sigma_a = Rgb(0.01f, 0.02f, 0.04f);
+    m.sigma_s = Rgb(0.06f);
+    m.reference_height_m = 0.0;
+    m.scale_height_m = 5.0;
+    m.phase = HenyeyGreenstein{0.3f};
+    m.bounds = Bounds3{Vec3(-40, -2, -40), Vec3(40, 30, 40)};
+    m.cap_density();
+    const MediumSet media({as_medium(m)});
+    const Vec3 lamp(3.0f, 4.5f, 1.5f);
+    const std::vector<Light> lights{Light{"lamp", PointLight{lamp, Rgb(50.0f)}}};
+    const Vec3 d = direction(-0.05);
+    const Ray ray{Vec3(-30, 6, 0), d, 0.0f, 70.0f};
+    const auto span = m.bounds->clip(ray);
+    ASSERT_TRUE(span.has_value());
+    const int n = 200000;
+    const double t0 = span->first, t1 = span->second, h = (t1 - t0) / n;
+    double acc[3] = {0, 0, 0};
+    for (int i = 0; i <= n; ++i) {
+        const double t = t0 + h * i;
+        const Vec3 x = ray.at(static_cast<float>(t));
+        const Vec3 to = lamp - x;
+        const float r = glm::length(to);
+        const Vec3 wi = to / r;
+        const double rho = std::exp(-double(x.y) / 5.0);
+        const double cam = height_fog_column(m, 6.0, d.y, t0, t);
+        const Rgb t_light = media.transmittance(Ray{x, wi, 0.0f, r});
+        const double p = eval(m.phase, scattering_cosine(-d, wi));
+        const double w = i == 0 || i == n ? 1 : (i % 2 == 1 ? 4 : 2);
+        for (int c = 0; c < 3; ++c)
+            acc[c] += w * m.sigma_s[c] * rho * p * 50.0 / (double(r) * r) *
+                      std::exp(-m.sigma_t()[c] * cam) * t_light[c];
+    }
+    VolumeSettings settings;
+    settings.estimator = Estimator::March;
+    settings.integrator = VolumeIntegrator::Single;
+    settings.step_m = 4.0f;
+    const int runs = 2000;
+    double mean[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
+    for (int r = 0; r < runs; ++r) {
+        Pcg32 rng(23, static_cast<uint64_t>(r));
+        VolumeCounters counters;
+        const VolumeResult v =
+            integrate_media(media, lights, nullptr, nullptr, ray, settings, true, rng, counters);
+        for (int c = 0; c < 3; ++c) {
+            mean[c] += v.radiance[c];
+            sq[c] += double(v.radiance[c]) * v.radiance[c];
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double expected = acc[c] * h / 3.0;
+        const double mu = mean[c] / runs;
+        const double spread = std::sqrt(std::max(0.0, sq[c] / runs - mu * mu));
+        EXPECT_NEAR(mu, expected, 5.0 * spread / std::sqrt(runs - 1.0) + 1e-6 * expected)
+            << "channel " << c;
+        EXPECT_LT(spread, 0.1 * expected) << "channel " << c;
+    }
+}
+
 // As H -> infinity the fog is homogeneous: the same depth on any ray and the same coefficients.
 TEST(HeightFog, InfiniteScaleHeightIsHomogeneous) {
     HeightFogMedium f = fog(0.02f, 0.03f, 5.0, 1e12);
