@@ -282,6 +282,22 @@ void check_key_frames(const SceneOptions& options) {
     }
 }
 
+/// SceneOptions::load, the scene at frame 0; an input error there in an animated scene says
+/// where frame 0 lies among the key frames, as check_key_frames does for the others.
+SceneDesc load_frame_zero(const SceneOptions& options) {
+    try {
+        return options.load();
+    } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Input)
+            throw;
+        std::vector<Override> overrides;
+        for (const std::string& s : options.sets)
+            overrides.push_back(parse_override(s));
+        throw Error(e.kind(), e.what() + frame_context(read_json_file(options.scene_path),
+                                                       overrides, 0, options.scene_path, e.what()));
+    }
+}
+
 }  // namespace
 
 void add_check_command(CLI::App& root) {
@@ -290,7 +306,7 @@ void add_check_command(CLI::App& root) {
         root.add_subcommand("check", "validate a scene and resolve its files; render nothing");
     options->add_to(*cmd);
     cmd->callback([options] {
-        const SceneDesc desc = options->load();
+        const SceneDesc desc = load_frame_zero(*options);
         check_key_frames(*options);
         if (!options->quiet) {
             std::cout << desc.file << ": ok (" << desc.shapes.size() << " shapes, "

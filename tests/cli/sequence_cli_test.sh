@@ -60,6 +60,12 @@ expect_exit 3 "spp.json: /film/width = 0: .*\(at frame 2 of /animate\)$" \
 expect_exit 0 "" -- render "$work/spp.json" --frame 4 -o "$work/spp/f4.exr" -q
 [ -e "$work/spp/f1.exr" ] || [ -e "$work/spp/f3.exr" ] || [ -e "$work/spp/f2.exr" ] &&
   fail "a rejected frame wrote output"
+# Frame 0 too, where `check` and `render` (default --frame 0) read the scene: key frame 0.
+expect_exit 3 "spp.json: /film/spp = 0.5: expected an integer \(at key frame 0 of /animate\)$" \
+  -- check "$work/spp.json" --set '/animate/~1film~1spp/0/1=0.5'
+expect_exit 3 "spp.json: /film/spp = 0.5: expected an integer \(at key frame 0 of /animate\)$" \
+  -- render "$work/spp.json" --set '/animate/~1film~1spp/0/1=0.5' -o "$work/spp/f0.exr" -q
+[ -e "$work/spp/f0.exr" ] && fail "a rejected frame 0 wrote output"
 
 # 24 frames: every file, one log line per frame with its time, a summary, the contact sheet.
 expect_exit 0 "" -- sequence "$scene" --frames 0-23 -o "$work/seq/fog.####.exr" "${tiny[@]}" \
