@@ -94,9 +94,10 @@ def kasumi_scene(vdb_path, voxel_m, res_px, spp, seed, volume):
     }
 
 
-# vdb_render writes one RGBA float EXR (RLE): kasumi writes the same channels the same way
-# (--aovs none: no AOV channels or their conversion; --compression rle), so neither side pays
-# for output the other does not write.
+# Both write one RGBA float EXR with RLE: kasumi without AOV channels or their conversion
+# (--aovs none, --compression rle), vdb_render told so (-compression rle: its default is zip,
+# which until 2026-11-30 12:50 UTC it wrote while kasumi wrote RLE), so neither side pays for
+# output the other does not write.
 KASUMI_OUTPUT = ["--aovs", "none", "--compression", "rle"]
 
 
@@ -119,7 +120,7 @@ def render_vdb(args, vdb_path, voxel_m, out, res_px, step, shadowstep, cutoff, t
            "-scatter", ",".join(["%g" % (SIGMA_S_PER_M * voxel_m)] * 3),
            "-absorb", ",".join(["%g" % (SIGMA_A_PER_M * voxel_m)] * 3),
            "-gain", "0", "-step", "%g" % step, "-shadowstep", "%g" % shadowstep,
-           "-cutoff", "%g" % cutoff, "-cpus", str(threads), "-v"]
+           "-cutoff", "%g" % cutoff, "-cpus", str(threads), "-compression", "rle", "-v"]
     p, wall, cpu = run(cmd, env=env)
     m = re.search(r"ray-tracing.*\n.*completed in ([0-9.eE+-]+) sec", p.stdout)
     render_vdb.cpu_s = cpu  # whole process, user + system
