@@ -78,7 +78,9 @@ ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResul
         channels.push_back({plane.name, plane.data,
                             channels.size() < 4 ? desc.film.pixel_type : ExrPixelType::Float});
     }
-    const ExrWriteReport report = write_exr(image, channels, paths.exr, paths.compression);
+    // Compressed with the render's own thread count (--threads 1: on this thread alone).
+    const ExrWriteReport report =
+        write_exr(image, channels, paths.exr, paths.compression, result.threads);
     if (!paths.preview.empty()) {
         const size_t pixels = static_cast<size_t>(image.width) * image.height;
         for (size_t i = 0; i < 3; ++i) {  // R, G, B

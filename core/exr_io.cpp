@@ -95,6 +95,17 @@ void check_writable(const Image& header, const std::vector<ExrChannelView>& chan
     }
 }
 
+/// Keeps zlib's deflate state in the process: zlib allocates ~270 KB of it for every compressed
+/// block and frees it after; glibc's default trim threshold (128 KB) then returns the top of the
+/// arena to the kernel each time (madvise, and in a VM a TLB shootdown on every core): 4% of the
+/// CPU of a 640x480 soft-shadow render. Keep up to 64 MB of freed memory instead.
+void keep_freed_memory() {
+#if defined(__GLIBC__)
+    static std::once_flag once;
+    std::call_once(once, [] { mallopt(M_TRIM_THRESHOLD, 64 << 20); });
+#endif
+}
+
 /// Threads OpenEXR compresses with (its global pool, sized once): one per hardware thread. A
 /// 1280x720 image with its AOVs is ~17 MB of ZIP-compressed scanlines; one thread takes longer
 /// to compress it than the fast sky takes to render it.
@@ -104,15 +115,20 @@ int exr_threads() {
     std::call_once(once, [] {
         threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
         Imf::setGlobalThreadCount(threads);
-#if defined(__GLIBC__)
-        // zlib allocates ~270 KB of deflate state for every compressed block and frees it
-        // after; glibc's default trim threshold (128 KB) then returns the top of the arena to
-        // the kernel each time (madvise, and in a VM a TLB shootdown on every core): 4% of the
-        // CPU of a 640x480 soft-shadow render. Keep up to 64 MB of freed memory instead.
-        mallopt(M_TRIM_THRESHOLD, 64 << 20);
-#endif
     });
     return threads;
+}
+
+/// OpenEXR's thread count for a write asked to use `threads` (0: every hardware thread): 1
+/// compresses on the calling thread (0 for OpenEXR, and its pool is never started: a render
+/// with --threads 1 no longer starts two compression threads, which for a 320x240 image cost
+/// more CPU in start-up and hand-offs than they saved).
+int exr_write_threads(int threads) {
+    keep_freed_memory();
+    if (threads == 1)
+        return 0;
+    const int pool = exr_threads();
+    return threads <= 0 ? pool : std::min(threads, pool);
 }
 
 Imf::Compression imf_compression(ExrCompression compression) {
@@ -293,7 +309,7 @@ ExrWriteReport write_exr(const Image& image, const std::string& path, ExrCompres
 }
 
 ExrWriteReport write_exr(const Image& header_image, const std::vector<ExrChannelView>& channels,
-                         const std::string& path, ExrCompression compression) {
+                         const std::string& path, ExrCompression compression, int threads) {
     check_writable(header_image, channels);
     HalfPlanes half = scan_half_channels(header_image, channels);
     AtomicFile file(path);
@@ -332,7 +348,7 @@ ExrWriteReport write_exr(const Image& header_image, const std::vector<ExrChannel
             }
             return frame_buffer;
         };
-        Imf::OutputFile out(file.temp_path().c_str(), header, exr_threads());
+        Imf::OutputFile out(file.temp_path().c_str(), header, exr_write_threads(threads));
         if (!half.any()) {
             out.setFrameBuffer(frame_buffer_at(0));
             out.writePixels(height);

@@ -69,11 +69,13 @@ struct ExrChannelView {
 };
 
 /// write_exr from borrowed planes (no copy of the pixels: the renderer writes its film's planes
-/// directly; HALF channels are converted into a buffer of their own); `header` gives size,
+/// directly; HALF channels are converted a block of rows at a time); `header` gives size,
 /// metadata and chromaticities, its own channels are ignored. Same checks, errors and
-/// atomicity as write_exr(Image).
+/// atomicity as write_exr(Image). `threads`: how many threads compress (0: one per hardware
+/// thread; 1: the calling thread alone, no pool started), the renderer passes its own count.
 ExrWriteReport write_exr(const Image& header, const std::vector<ExrChannelView>& channels,
-                         const std::string& path, ExrCompression compression = ExrCompression::Zip);
+                         const std::string& path, ExrCompression compression = ExrCompression::Zip,
+                         int threads = 0);
 
 /// Reads every channel of `path` as float (HALF channels converted exactly) (top row first) and its
 /// string attributes: those named "kasumi/<key>" become metadata <key>, other string attributes

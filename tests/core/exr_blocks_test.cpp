@@ -96,6 +96,33 @@ TEST(ExrHalfBlocks, RoundsEachValueAsImathDoesAtBlockEdges) {
         }
 }
 
+TEST(ExrHalfBlocks, SameFileWhateverTheCompressionThreads) {
+    // threads 1 compresses on the calling thread (no OpenEXR pool), 0 and 2 in the pool: the
+    // pixels read back must be the same, half and float channels, every block.
+    ScratchDir dir("kasumi_exr_blocks_");
+    const int width = 33, height = 200;
+    const size_t n = static_cast<size_t>(width) * height;
+    std::vector<float> r(n), z(n);
+    for (size_t i = 0; i < n; ++i) {
+        r[i] = std::sin(0.01f * static_cast<float>(i)) * 100.0f;
+        z[i] = 1.0f + static_cast<float>(i) * 1e-3f;
+    }
+    std::vector<Image> back;
+    for (const int threads : {1, 0, 2}) {
+        const std::string path = dir.file("threads" + std::to_string(threads) + ".exr");
+        write_exr(Image(width, height),
+                  {{"R", r.data(), ExrPixelType::Half}, {"depth.Z", z.data(), ExrPixelType::Float}},
+                  path, ExrCompression::Zip, threads);
+        back.push_back(read_exr(path));
+    }
+    for (size_t k = 1; k < back.size(); ++k) {
+        EXPECT_EQ(back[k].find("R")->data, back[0].find("R")->data);
+        EXPECT_EQ(back[k].find("depth.Z")->data, z);
+    }
+    EXPECT_EQ(back[0].find("depth.Z")->data, z);
+    EXPECT_NE(back[0].find("R")->data[150], 0.0f);
+}
+
 TEST(ExrHalfBlocks, EveryFloatBitPatternRoundsAsImathDoes) {
     // The writer converts with the F16C instruction where the CPU has it (8 at a time, the rest
     // one by one) and with Imath otherwise; this test's own Imath::half is Imath's software
