@@ -116,6 +116,20 @@ struct MarchLight {
     LightTransmittanceCache::Line line;
 };
 
+/// A directional light's march record at RAY: its incident light (the same everywhere along the
+/// ray: a delta light at infinity) and the scattering cosine toward WO. False when it sends no
+/// light.
+bool directional_march_light(const Light& light, size_t index, const Ray& ray, const Vec3& wo,
+                             Pcg32& rng, MarchLight& m) {
+    m.index = index;
+    m.directional = true;
+    m.incident = sample_incident(light, ray.origin, rng);
+    if (is_black(m.incident.irradiance))
+        return false;
+    m.mu = scattering_cosine(wo, m.incident.wi);
+    return true;
+}
+
 /// How many march nodes ahead march_single_grid prefetches the grid's voxels: the work of one
 /// node (~50 ns) is less than a load from memory (4 nodes ahead measured the same as 2).
 constexpr float kPrefetchNodes = 2.0f;
@@ -369,11 +383,8 @@ bool march_single_height_fog(const MediumSet& media, const std::vector<Light>& l
         MarchLight m;
         m.index = i;
         if (std::holds_alternative<DirectionalLight>(lights[i].emitter)) {
-            m.directional = true;
-            m.incident = sample_incident(lights[i], ray.origin, rng);
-            if (is_black(m.incident.irradiance))
+            if (!directional_march_light(lights[i], i, ray, wo, rng, m))
                 continue;
-            m.mu = scattering_cosine(wo, m.incident.wi);
             const float y = luminance(m.incident.irradiance);
             if (m.incident.wi.y > kLowSun && y > sun_luminance) {
                 sun_luminance = y;
@@ -507,12 +518,8 @@ VolumeResult march_single(const MediumSet& media, const std::vector<Light>& ligh
         MarchLight m;
         m.index = i;
         if (std::holds_alternative<DirectionalLight>(lights[i].emitter)) {
-            // A delta light at infinity: the same incident light everywhere (no random number).
-            m.directional = true;
-            m.incident = sample_incident(lights[i], ray.origin, rng);
-            if (is_black(m.incident.irradiance))
+            if (!directional_march_light(lights[i], i, ray, wo, rng, m))
                 continue;
-            m.mu = scattering_cosine(wo, m.incident.wi);
             if (settings.light_cache) {
                 m.cache = media.light_cache(i, lights[i]);
                 if (m.cache != nullptr)
