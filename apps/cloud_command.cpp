@@ -1,7 +1,7 @@
 #include "apps/cloud_command.h"
 
-#include "volume/cloud_noise.h"
-#include "volume/vdb_io.h"
+#include "volume/grid/cloud_noise.h"
+#include "volume/grid/vdb_io.h"
 
 #include <chrono>
 #include <cstdio>

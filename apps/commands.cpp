@@ -5,10 +5,10 @@
 #include "apps/scene_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "render/animation.h"
 #include "render/probe.h"
 #include "render/renderer.h"
-#include "render/sequence_cache.h"
+#include "scene/animation.h"
+#include "sequence/sequence_cache.h"
 #include "volume/transmittance.h"
 
 #include <atomic>

@@ -1,6 +1,6 @@
 #pragma once
 /// Options every scene-reading subcommand shares: the scene path, --set overrides, verbosity.
-#include "render/scene_loader.h"
+#include "scene/scene_loader.h"
 
 #include <CLI/CLI.hpp>
 

@@ -4,7 +4,7 @@
 #include "apps/output_writer.h"
 #include "apps/scene_options.h"
 #include "core/error.h"
-#include "render/sequence.h"
+#include "sequence/sequence.h"
 
 #include <algorithm>
 #include <atomic>

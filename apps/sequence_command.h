@@ -1,5 +1,5 @@
 #pragma once
-/// `kasumi sequence`: renders the frames of an animated scene (render/sequence.h).
+/// `kasumi sequence`: renders the frames of an animated scene (sequence/sequence.h).
 #include <CLI/CLI.hpp>
 
 namespace kasumi {

@@ -2,8 +2,8 @@
 
 #include "apps/scene_options.h"
 #include "core/error.h"
-#include "render/study.h"
-#include "render/study_report.h"
+#include "study/study.h"
+#include "study/study_report.h"
 
 #include <cstdio>
 #include <filesystem>

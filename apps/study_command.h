@@ -1,5 +1,5 @@
 #pragma once
-/// `kasumi study`: accuracy against time over combinations of scene settings (render/study.h).
+/// `kasumi study`: accuracy against time over combinations of scene settings (study/study.h).
 #include <CLI/CLI.hpp>
 
 namespace kasumi {

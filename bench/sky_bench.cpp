@@ -2,17 +2,17 @@
 // a sunset scene with aerial perspective in fast mode (scene load, sky tables, render; the EXR
 // is not written), the time per frame of a whole sequence (kasumi sequence's own loop: reuse,
 // render, EXR written), and the fast mode's error against the reference at the frame's sun
-// elevation (relative luminance over the 36-direction dome of tests/volume/sky_fast_test.cpp).
+// elevation (relative luminance over the 36-direction dome of tests/sky/sky_fast_test.cpp).
 // Wall time and the process's CPU time (user + system) are both reported: on a loaded machine
 // only the CPU time is comparable between runs.
 //   sky_bench [--scene S] [--sequence S] [--reps N] [--frames N] [--paths N] [--out DIR]
 //             [--aovs all|none|LIST] [--compression zip|piz|rle|none] [--write-queue N]
 #include "render/renderer.h"
-#include "render/scene_loader.h"
-#include "render/sequence.h"
-#include "volume/atmosphere_json.h"
-#include "volume/sky_luts.h"
-#include "volume/sky_reference.h"
+#include "scene/scene_loader.h"
+#include "sequence/sequence.h"
+#include "sky/atmosphere_json.h"
+#include "sky/sky_luts.h"
+#include "sky/sky_reference.h"
 
 #include <sys/resource.h>
 

@@ -1,7 +1,7 @@
 // Raw trilinear density lookups on one grid, three ways: OpenVDB (tools::BoxSampler through a
 // ValueAccessor), NanoVDB (SampleFromVoxels order 1 through a ReadAccessor) and our DensityGrid
-// (bricks with aprons, volume/density_grid.h), plus the all-in MediumSet::coefficients that the
-// trackers call (world-to-index transform and the coefficient scaling on top). The only file
+// (bricks with aprons, volume/grid/density_grid.h), plus the all-in MediumSet::coefficients that
+// the trackers call (world-to-index transform and the coefficient scaling on top). The only file
 // outside volume/vdb_*.cpp that includes OpenVDB headers.
 //
 // The grid: $KASUMI_BENCH_VDB (default data/clouds/cumulus_256.vdb, relative to the working
@@ -11,8 +11,8 @@
 //     or a tracker walk);
 //   - "random": uniform points in the box (incoherent: the worst case for accessor caches).
 // Items/s is lookups per second on one core; ns per lookup = 1e9 / items_per_second.
+#include "volume/grid/vdb_io.h"
 #include "volume/medium_set.h"
-#include "volume/vdb_io.h"
 
 #include <benchmark/benchmark.h>
 #include <nanovdb/util/OpenToNanoVDB.h>

@@ -1,5 +1,5 @@
 #pragma once
-/// Loading the project's own shared modules (volume/vdb_module.h: OpenVDB; core/ocio_module.h:
+/// Loading the project's own shared modules (volume/grid/vdb_module.h: OpenVDB; core/ocio_module.h:
 /// OpenColorIO) with dlopen on first use, so a process that does not need a heavy library never
 /// pays for binding its symbols.
 #include <mutex>

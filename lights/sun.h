@@ -1,7 +1,7 @@
 #pragma once
 /// The sun: a directional light with an angular radius, a limb-darkened disc and a spectrum.
 /// `illuminance_lux` is the illuminance at the top of the atmosphere on a surface facing the
-/// sun; the atmosphere (volume/sky_scene.h) attenuates it on the way down.
+/// sun; the atmosphere (sky/sky_scene.h) attenuates it on the way down.
 /// Directions: +y up, azimuth clockwise from north with north = -z and east = +x.
 #include "core/csv_table.h"
 #include "core/json_node.h"

@@ -1,8 +1,8 @@
 #include "render/integrator.h"
 
+#include "gi/gi.h"
+#include "gi/photon/photon_gi.h"
 #include "lights/light_samples.h"
-#include "render/gi.h"
-#include "render/photon_gi.h"
 #include "render/sky_environment.h"
 #include "render/sky_shafts.h"
 #include "render/whitted.h"

@@ -22,7 +22,7 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
                                   RenderCounters& counters);
 
 /// What is known, before any shadow ray, about whether a light is blocked by surfaces at a
-/// shading point (render/photon_shadow.h decides it from shadow photons).
+/// shading point (gi/photon/photon_shadow.h decides it from shadow photons).
 enum class KnownVisibility : uint8_t {
     Unknown,   ///< cast the shadow rays
     Lit,       ///< nothing blocks the light: no shadow ray

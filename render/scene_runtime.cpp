@@ -1,7 +1,7 @@
 #include "render/scene_runtime.h"
 
-#include "render/gi.h"
-#include "render/gi_plan.h"
+#include "gi/gi.h"
+#include "scene/gi_plan.h"
 
 #include <chrono>
 
@@ -88,7 +88,7 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
             m_build_times.gi_s = since(start);
     }
     if (m_gi)
-        add_gi_summary(m_plan, *m_gi);
+        add_gi_summary(m_plan, m_gi->summary());
 }
 
 }  // namespace kasumi

@@ -3,13 +3,13 @@
 /// Embree scene only with shapes, the media only with media.
 #include "core/camera.h"
 #include "core/scene_queries.h"
-#include "render/plan.h"
-#include "render/scene.h"
+#include "scene/plan.h"
+#include "scene/scene.h"
+#include "sky/sky_renderer.h"
 #include "surface/shadow_map.h"
 #include "surface/shadow_volume.h"
 #include "surface/surface_scene.h"
 #include "volume/medium_set.h"
-#include "volume/sky_renderer.h"
 
 #include <memory>
 
@@ -44,7 +44,7 @@ class SceneRuntime {
     explicit SceneRuntime(SceneDesc desc);
     /// As above, but takes `surfaces` as the scene's BVH instead of building one when the plan
     /// needs it (null: build). The caller guarantees it was built from the same desc.shapes
-    /// (render/sequence.h reuses one across the frames of a sequence).
+    /// (sequence/sequence.h reuses one across the frames of a sequence).
     SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces);
     /// As above, and takes `sky_tables` as the sky's sun-independent tables (fast mode; null:
     /// build). The caller guarantees they were built for the same atmosphere, wavelengths and
@@ -72,7 +72,7 @@ class SceneRuntime {
     const ShadowMapSet* shadow_maps() const { return m_shadow_maps.get(); }
     /// Null unless the plan has shadow volumes.
     const ShadowVolumeSet* shadow_volumes() const { return m_shadow_volumes.get(); }
-    /// The render.gi method and its precomputation (render/gi.h); null for "none".
+    /// The render.gi method and its precomputation (gi/gi.h); null for "none".
     const GiMethod* gi() const { return m_gi.get(); }
     /// Time spent building each part in the constructor.
     const BuildTimes& build_times() const { return m_build_times; }

@@ -1,6 +1,6 @@
 #include "render/sky_shafts.h"
 
-#include "volume/sky_reference.h"
+#include "sky/sky_reference.h"
 #include "volume/transmittance.h"
 
 #include <algorithm>

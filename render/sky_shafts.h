@@ -1,7 +1,7 @@
 #pragma once
 /// Light shafts in the atmosphere (`render.sky.shafts`): surfaces and media (clouds, fog) hide
 /// the sun from part of the air between the camera and what it sees, so that part adds no
-/// single-scattered sunlight. The sky stage (volume/sky_renderer.h) integrates the air as if
+/// single-scattered sunlight. The sky stage (sky/sky_renderer.h) integrates the air as if
 /// the sun lit all of it; this stage estimates the single-scattered sunlight of the shadowed
 /// air over the first `render.sky.shaft_distance_m` of a camera ray,
 ///

@@ -1,8 +1,8 @@
 #pragma once
 /// Wall time of each stage of one render (`kasumi render -v` and the EXR metadata), and the
 /// plan's skipped stages in one line.
-#include "render/plan.h"
 #include "render/scene_runtime.h"
+#include "scene/plan.h"
 
 #include <chrono>
 #include <string>

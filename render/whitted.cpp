@@ -1,6 +1,6 @@
 #include "render/whitted.h"
 
-#include "render/gi.h"
+#include "gi/gi.h"
 #include "render/integrator.h"
 #include "render/sky_environment.h"
 #include "surface/emitter_hit.h"

@@ -2,8 +2,8 @@
 /// The trackers' walk over a ray's majorant segments, lazily: segments are produced in order as
 /// the walk goes and nothing past the point where it stops (a real collision, a scattering
 /// event, Russian roulette) is computed. For a set that is exactly one grid medium the segments
-/// are the grid's bricks (volume/density_grid.h, `DensityGrid::walk`) and each names its brick,
-/// so a lookup skips the brick table; otherwise they are MediumSet::majorants (per brick,
+/// are the grid's bricks (volume/grid/density_grid.h, `DensityGrid::walk`) and each names its
+/// brick, so a lookup skips the brick table; otherwise they are MediumSet::majorants (per brick,
 /// overlapping media summed, listed for the whole ray).
 #include "volume/medium_set.h"
 

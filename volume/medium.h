@@ -6,7 +6,7 @@
 #include "core/color.h"
 #include "phase/phase_function.h"
 #include "volume/blackbody.h"
-#include "volume/density_grid.h"
+#include "volume/grid/density_grid.h"
 #include "volume/height_fog.h"
 
 #include <memory>

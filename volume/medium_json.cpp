@@ -1,7 +1,7 @@
 #include "volume/medium_json.h"
 
 #include "phase/phase_json.h"
-#include "volume/vdb_io.h"
+#include "volume/grid/vdb_io.h"
 #include "volume/visibility.h"
 
 #include <glm/gtc/matrix_transform.hpp>

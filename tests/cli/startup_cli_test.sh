@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What a kasumi process loads: OpenVDB only through its module (libkasumi_vdb.so, dlopen'd on
 # the first .vdb read or write), so commands and scenes without grids never load it; a VDB scene
-# in the common layout is read without it (volume/vdb_direct.h), and through it with
+# in the common layout is read without it (volume/grid/vdb_direct.h), and through it with
 # KASUMI_VDB_DIRECT=0 (also the path of every other layout); a missing or foreign module is a
 # clear runtime error (exit 1) naming the paths tried, with no output written. OpenColorIO likewise (libkasumi_ocio.so,
 # only for the PNG preview). And `--aovs none` writes exactly R, G, B, A.

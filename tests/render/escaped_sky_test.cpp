@@ -13,7 +13,7 @@
 // several times the test's bound (5 standard errors + 0.5% of dL): both mistakes fail it.
 #include "render/probe.h"
 #include "render/sky_environment.h"
-#include "test_scene.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // lit part of the ray. A wall that hides half the ray from the light removes exactly that half:
 // the shadow shaft.
 #include "render/probe.h"
-#include "test_scene.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

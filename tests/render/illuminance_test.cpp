@@ -3,7 +3,7 @@
 // equal to E/π.
 #include "render/illuminance.h"
 #include "render/probe.h"
-#include "test_scene.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

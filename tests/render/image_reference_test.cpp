@@ -2,7 +2,7 @@
 // Regenerate the reference on purpose with KASUMI_UPDATE_REFERENCES=1 (never automatically).
 #include "core/exr_io.h"
 #include "render/renderer.h"
-#include "render/scene_loader.h"
+#include "scene/scene_loader.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Exact answers for the surface stage: photometric units, the cosine and inverse-square laws,
 // Phong's specular lobe, shadows, and Beer-Lambert in front of a surface.
 #include "render/probe.h"
-#include "test_scene.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

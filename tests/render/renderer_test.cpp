@@ -1,8 +1,8 @@
 // The renderer as a whole: plans skip what a scene does not need (and counters prove it),
 // images are deterministic across thread counts, and never hold a non-finite value.
 #include "render/renderer.h"
-#include "render/scene_loader.h"
-#include "test_scene.h"
+#include "scene/scene_loader.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

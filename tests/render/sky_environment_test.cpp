@@ -4,7 +4,7 @@
 #include "render/sky_environment.h"
 #include "render/integrator.h"
 #include "render/probe.h"
-#include "test_scene.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

@@ -12,10 +12,10 @@
 #include "render/sky_shafts.h"
 #include "core/error.h"
 #include "render/integrator.h"
-#include "render/plan.h"
 #include "render/probe.h"
-#include "test_scene.h"
-#include "volume/sky_reference.h"
+#include "scene/plan.h"
+#include "sky/sky_reference.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include "render/probe.h"
 #include "surface/fresnel.h"
 #include "surface/shading.h"
-#include "test_scene.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 

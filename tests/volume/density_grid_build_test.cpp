@@ -1,13 +1,13 @@
-// The parallel grid construction (volume/density_grid_build.h) against the per-voxel one it
+// The parallel grid construction (volume/grid/density_grid_build.h) against the per-voxel one it
 // replaces at load time (DensityGrid::set of every active voxel, then finalize): on random
 // sparse blocks at every alignment of the grid's bricks to the blocks, the two grids must be
 // identical: the same bricks, the same bounds, bit-identical densities at any point and the same
 // brick spans along any ray. Deterministic (fixed seeds), so no false failures.
-#include "volume/density_grid_build.h"
+#include "volume/grid/density_grid_build.h"
 
 #include "core/rng.h"
 #include "vdb_test_grids.h"
-#include "volume/vdb_io.h"
+#include "volume/grid/vdb_io.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include "volume/majorant_walk.h"
 #include "core/rng.h"
 #include "tests/sample_mean.h"
-#include "volume/density_grid.h"
+#include "volume/grid/density_grid.h"
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
 

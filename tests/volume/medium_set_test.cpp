@@ -1,7 +1,7 @@
 #include "volume/medium_set.h"
 
 #include "core/rng.h"
-#include "volume/density_grid.h"
+#include "volume/grid/density_grid.h"
 #include "volume/transmittance.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Hostile and damaged .vdb files against the direct reader (volume/vdb_direct.h): small grids
+// Hostile and damaged .vdb files against the direct reader (volume/grid/vdb_direct.h): small grids
 // written by OpenVDB with each compression (blosc, none; with and without the active mask;
 // OpenVDB writes the "zip" fixtures of a fog volume without zip), one with active tiles, then
 // deterministic mutations of their bytes: the file cut at many lengths, single bytes set to 0x00,
@@ -11,12 +11,12 @@
 // request over its maximum (ASAN_OPTIONS=max_allocation_size_mb=1024 tightens it). Deterministic
 // (no random draws in the fixed set), so no false failures. $KASUMI_VDB_FUZZ_SEEDS=N adds N random
 // multi-byte mutants per fixture (for long local runs under ASan; not used by ctest).
-#include "volume/vdb_direct.h"
+#include "volume/grid/vdb_direct.h"
 
 #include "core/error.h"
 #include "core/rng.h"
 #include "vdb_test_grids.h"
-#include "volume/vdb_io.h"
+#include "volume/grid/vdb_io.h"
 
 #include <gtest/gtest.h>
 

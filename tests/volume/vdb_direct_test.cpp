@@ -1,4 +1,4 @@
-// The direct .vdb reader (volume/vdb_direct.h) against OpenVDB's own reading of the same files
+// The direct .vdb reader (volume/grid/vdb_direct.h) against OpenVDB's own reading of the same files
 // (load_density_grid_openvdb: OpenVDB's tree, then DensityGridBuilder), and both against the
 // trilinear interpolation of the voxels as written (what OpenVDB's BoxSampler returns on a fog
 // volume: inactive voxels and everything outside read 0). Files are written by OpenVDB with
@@ -6,12 +6,12 @@
 // (the mask-compression cases 0, 2, 4, 5 and 6 of io/Compression.h; 1 and 3 need a background
 // whose negative differs from it, never 0), negative coordinates, and active tiles.
 // Deterministic (fixed seeds), so no false failures.
-#include "volume/vdb_direct.h"
+#include "volume/grid/vdb_direct.h"
 
 #include "core/error.h"
 #include "core/rng.h"
 #include "vdb_test_grids.h"
-#include "volume/vdb_io.h"
+#include "volume/grid/vdb_io.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // Grids for the VDB tests, written with OpenVDB (through write_fog_volume) into a temporary
 // directory and read back through the scene loader's parse_medium, as a scene would.
 #include "core/json_node.h"
+#include "volume/grid/vdb_io.h"
 #include "volume/medium_json.h"
-#include "volume/vdb_io.h"
 
 #include <unistd.h>
 

@@ -3,10 +3,10 @@
 // large, and .vdb files whose header is cut short or lies about its lengths.
 #include "core/error.h"
 #include "vdb_test_grids.h"
+#include "volume/grid/vdb_header.h"
 #include "volume/in_scattering.h"
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"
-#include "volume/vdb_header.h"
 #include "volume/volume_path.h"
 
 #include <gtest/gtest.h>

@@ -1,0 +1,300 @@
+#include "scene/plan.h"
+
+#include "scene/gi_plan.h"
+#include "scene/quality_plan.h"
+#include "surface/emitter_hit.h"
+#include "surface/shadow_map.h"
+#include "volume/medium_set.h"
+#include "volume/transmittance.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace kasumi {
+
+namespace {
+
+bool any_ambient_material(const SceneDesc& scene) {
+    for (const Material& m : scene.materials) {
+        const auto* phong = std::get_if<PhongMaterial>(&m);
+        if (phong != nullptr && max_component(phong->ka) > 0.0f)
+            return true;
+    }
+    return false;
+}
+
+std::string count(size_t n, const char* what) {
+    return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+std::string media_summary(const SceneDesc& scene) {
+    size_t grids = 0, fogs = 0;
+    for (const Medium& m : scene.media) {
+        grids += std::holds_alternative<VdbMedium>(m.model) ? 1 : 0;
+        fogs += std::holds_alternative<HeightFogMedium>(m.model) ? 1 : 0;
+    }
+    const size_t boxes = scene.media.size() - grids - fogs;
+    std::string text;
+    if (boxes > 0)
+        text = count(boxes, "homogeneous medium");
+    if (fogs > 0)
+        text += (text.empty() ? "" : " + ") + count(fogs, "height fog") +
+                " (closed-form optical depth; e-fold majorant segments)";
+    if (grids > 0)
+        text += (text.empty() ? "" : " + ") + count(grids, "VDB grid");
+    return text;
+}
+
+std::string estimator_summary(const SceneDesc& scene) {
+    const VolumeSettings& volume = scene.render.volume;
+    const bool homogeneous = MediumSet(scene.media).all_homogeneous();
+    std::string text = std::string("estimator ") + estimator_name(volume.estimator) +
+                       (volume.estimator_given ? "" : " (default for these media)");
+    switch (volume.estimator) {
+        case Estimator::March:
+            text += homogeneous ? ", exact Beer-Lambert per stretch"
+                                : ", trapezoid rule, jittered fixed step (biased)";
+            break;
+        case Estimator::Delta:
+            text += ", delta tracking (unbiased, 0 or 1)";
+            break;
+        case Estimator::Ratio:
+            text += ", ratio tracking (unbiased)";
+            break;
+        case Estimator::ResidualRatio:
+            text += ", residual ratio tracking against the minorant (unbiased)";
+            break;
+    }
+    const bool grids = std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) {
+        return std::holds_alternative<VdbMedium>(m.model);
+    });
+    if (grids)
+        text += "; per-brick majorants, DDA skips empty bricks";
+    return text;
+}
+
+std::string format_g(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+}
+
+std::string join(const std::vector<std::string>& items) {
+    std::string text;
+    for (const std::string& item : items)
+        text += (text.empty() ? "" : "; ") + item;
+    return text;
+}
+
+/// Soft shadows, shadow maps, shadow volumes, Whitted recursion and lights seen directly.
+void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
+    const bool shadows_on = !scene.shapes.empty() && scene.render.shadows;
+    const char* why_off =
+        scene.shapes.empty() ? "no shapes can cast shadows" : "render.shadows is false";
+    std::vector<std::string> soft, maps, volumes;
+    for (const Light& light : scene.lights) {
+        if (!is_delta(light) && light.shadows == ShadowMode::Ray)
+            soft.push_back(light.name + ": " + std::to_string(light.samples) + " shadow rays" +
+                           (light.shadow_probes > 0 && light.shadow_probes < light.samples
+                                ? ", stopping after " + std::to_string(light.shadow_probes) +
+                                      " probes that agree (biased)"
+                                : "") +
+                           (light.outline_probes > 0
+                                ? ", " + std::to_string(light.outline_probes) +
+                                      " outline probes decide lit and umbra points (biased, "
+                                      "bounded)"
+                                : "") +
+                           (light.exact_penumbra
+                                ? ", exact penumbra against spheres, boxes and quads where the "
+                                  "closed form applies (sampled elsewhere)"
+                                : ""));
+        if (light.shadows == ShadowMode::Map)
+            maps.push_back(light.name + ": " + describe_shadow_maps(light));
+        if (light.shadows == ShadowMode::ShadowVolume)
+            volumes.push_back(light.name);
+    }
+    plan.stages.push_back(
+        {"soft-shadows", shadows_on && !soft.empty(),
+         !shadows_on    ? why_off
+         : soft.empty() ? "no line, polygon or sphere light with \"shadows\": \"ray\""
+                        : "extended lights sampled per shading point, ratio estimator (analytic "
+                          "illuminance times visible fraction): " +
+                              join(soft)});
+    plan.shadow_maps = shadows_on && !maps.empty();
+    plan.stages.push_back(
+        {"shadow-maps", plan.shadow_maps,
+         !shadows_on    ? why_off
+         : maps.empty() ? "no light has \"shadows\": \"map\""
+                        : "depth rendered from the light by ray casting once per render, before "
+                          "the first pixel; bias + slope-scaled bias, PCF: " +
+                              join(maps)});
+    plan.shadow_volumes = shadows_on && !volumes.empty();
+    plan.stages.push_back(
+        {"shadow-volumes", plan.shadow_volumes,
+         !shadows_on       ? why_off
+         : volumes.empty() ? "no light has \"shadows\": \"shadow-volume\""
+                           : "silhouette edges of boxes, quads and meshes extruded from the light, "
+                             "closed by caps; depth-fail counting by ray casting (spheres: "
+                             "shadow rays): " +
+                                 join(volumes)});
+    bool specular = false;
+    for (const Shape& shape : scene.shapes) {
+        const Material& m = scene.materials[shape.material];
+        specular = specular || std::holds_alternative<MirrorMaterial>(m) ||
+                   std::holds_alternative<DielectricMaterial>(m);
+    }
+    const WhittedSettings& whitted = scene.render.whitted;
+    plan.stages.push_back(
+        {"whitted", specular,
+         specular ? "mirror/dielectric surfaces: reflected and refracted rays (exact Fresnel), "
+                    "max_depth " +
+                        std::to_string(whitted.max_depth) + ", min_weight " +
+                        format_g(whitted.min_weight)
+                  : "no mirror or dielectric surface: no secondary rays"});
+    plan.visible_lights = has_visible_emitters(scene.lights);
+    plan.stages.push_back(
+        {"visible-lights", plan.visible_lights,
+         plan.visible_lights
+             ? "polygon and sphere lights seen by camera and Whitted rays with their luminance "
+               "(point, spot, goniometric, directional and line lights are invisible)"
+             : "no polygon or sphere light (point-like, directional and line lights are "
+               "invisible)"});
+}
+
+/// Light shafts in the atmosphere (render/sky_shafts.h).
+PlanStage sky_shafts_plan_stage(const SceneDesc& scene, const Plan& plan) {
+    const SkySettings& sky = scene.sky->settings;
+    if (!sky.shafts)
+        return {"sky-shafts", false,
+                "render.sky.shafts is false: the air is lit by the sun everywhere (no light "
+                "shafts)"};
+    std::vector<std::string> casters;
+    if (plan.shadow_rays)
+        casters.push_back("surfaces (one shadow ray per node)");
+    if (plan.volume)
+        casters.push_back(std::string("media (") + estimator_name(scene.render.volume.estimator) +
+                          " transmittance toward the sun)");
+    if (casters.empty())
+        return {"sky-shafts", false,
+                "render.sky.shafts is true but nothing can shadow the air (no shapes casting "
+                "shadows, no media)"};
+    return {"sky-shafts", true,
+            "single-scattered sunlight of the air hidden by " + casters.front() +
+                (casters.size() > 1 ? " and " + casters.back() : std::string()) +
+                " subtracted over the first " + format_g(sky.shaft_distance_m) +
+                " m of camera rays, " + std::to_string(sky.shaft_samples) +
+                " jittered strata; multiply scattered sky light unshadowed"};
+}
+
+}  // namespace
+
+Plan make_plan(const SceneDesc& scene) {
+    Plan plan;
+    const bool has_shapes = !scene.shapes.empty();
+    const bool has_lights = !scene.lights.empty();
+    const bool has_media = !scene.media.empty();
+    const bool media_scatter = MediumSet(scene.media).scatters();
+
+    plan.surfaces = has_shapes;
+    plan.stages.push_back({"surfaces", plan.surfaces,
+                           has_shapes
+                               ? count(scene.shapes.size(), "shape") + ": Embree BVH, closest hit"
+                               : "no shapes: no BVH built"});
+
+    plan.direct_light = has_shapes && has_lights;
+    plan.stages.push_back({"direct-light", plan.direct_light,
+                           plan.direct_light
+                               ? count(scene.lights.size(), "light") + ", Phong shading"
+                           : !has_shapes ? "no shapes to light"
+                                         : "no lights"});
+
+    plan.shadow_rays = has_shapes && has_lights && scene.render.shadows;
+    plan.stages.push_back({"shadow-rays", plan.shadow_rays,
+                           plan.shadow_rays        ? "one shadow ray per delta light (hard shadows)"
+                           : !scene.render.shadows ? "render.shadows is false"
+                           : !has_shapes           ? "no shapes can cast shadows"
+                                                   : "no lights"});
+
+    add_shadow_stages(scene, plan);
+
+    plan.ambient = has_shapes && max_component(scene.ambient) > 0.0f && any_ambient_material(scene);
+    plan.stages.push_back({"ambient", plan.ambient,
+                           plan.ambient ? "ambient light and materials with ka > 0"
+                                        : "ambient light or every ka is zero"});
+
+    const VolumeSettings& volume = scene.render.volume;
+    const bool multiple = volume.integrator == VolumeIntegrator::Multiple;
+    plan.volume = has_media;
+    plan.stages.push_back(
+        {"volume-transmittance", plan.volume,
+         has_media ? media_summary(scene) + ": " + estimator_summary(scene) : "no media"});
+
+    // Multiple scattering lights media from the background too, without lights.
+    const bool lit = has_lights || (multiple && max_component(scene.background) > 0.0f);
+    plan.in_scattering = has_media && media_scatter && lit;
+    const bool exact_stretches = MediumSet(scene.media).all_homogeneous() &&
+                                 volume.estimator == Estimator::March && !multiple;
+    const bool lone_height_fog = scene.media.size() == 1 &&
+                                 std::holds_alternative<HeightFogMedium>(scene.media[0].model) &&
+                                 volume.estimator == Estimator::March && !multiple;
+    plan.stages.push_back(
+        {"volume-in-scattering", plan.in_scattering,
+         !plan.in_scattering ? (!has_media       ? "no media"
+                                : !media_scatter ? "media do not scatter (sigma_s = 0): "
+                                                   "transmittance only"
+                                                 : "no lights to scatter")
+         : exact_stretches
+             ? "single scattering, marched with step " + std::to_string(volume.step_m) + " m" +
+                   (plan.shadow_rays ? ", shadowed by surfaces" : "")
+         : lone_height_fog
+             ? "single scattering, march of the height fog: nodes stratified in its closed-form "
+               "column (step " +
+                   std::to_string(volume.step_m) +
+                   " m where the ray's fog is densest; unbiased), exact transmittance" +
+                   (plan.shadow_rays ? ", shadowed by surfaces" : "")
+         : volume.estimator == Estimator::March && !multiple
+             ? "single scattering, fixed-step march (" + std::to_string(volume.step_m) +
+                   " m or step_voxels), light to every node through the march"
+             : std::string(multiple ? "paths" : "single scattering") +
+                   ": free flights by spectral (delta) tracking over per-brick majorants, "
+                   "next-event estimation to every light through " +
+                   estimator_name(volume.estimator) +
+                   (plan.shadow_rays ? ", shadowed by surfaces" : "")});
+
+    plan.stages.push_back(
+        {"multiple-scattering", plan.in_scattering && multiple,
+         !plan.in_scattering ? "no in-scattering"
+         : multiple ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
+                          ", Russian roulette from the third scattering"
+                    : "render.volume.integrator is \"single\": light scattered more than once "
+                      "is left out"});
+    plan.stages.push_back(scattering_bound_plan_stage(scene, plan));
+    plan.stages.push_back(gi_plan_stage(scene));
+    plan.stages.push_back({"background", max_component(scene.background) > 0.0f,
+                           max_component(scene.background) > 0.0f ? "constant background radiance"
+                                                                  : "black background"});
+    for (const SkyPlanStage& s : sky_plan_stages(scene.sky.get()))
+        plan.stages.push_back({s.name, s.enabled, s.reason});
+    if (scene.sky != nullptr)
+        plan.stages.push_back(sky_shafts_plan_stage(scene, plan));
+    plan.stages.push_back(quality_plan_stage(scene));
+    return plan;
+}
+
+std::string plan_to_text(const Plan& plan) {
+    std::ostringstream out;
+    for (const PlanStage& s : plan.stages) {
+        out << (s.enabled ? "  run   " : "  skip  ") << s.name << ": " << s.reason << "\n";
+    }
+    return out.str();
+}
+
+Json plan_to_json(const Plan& plan) {
+    Json stages = Json::array();
+    for (const PlanStage& s : plan.stages) {
+        stages.push_back({{"name", s.name}, {"enabled", s.enabled}, {"reason", s.reason}});
+    }
+    return Json{{"stages", stages}};
+}
+
+}  // namespace kasumi

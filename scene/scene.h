@@ -1,0 +1,74 @@
+#pragma once
+/// The scene description: plain values read from a scene file and validated, before anything
+/// is built. Units: metres, lux, candela, cd/m², 1/m.
+#include "core/camera.h"
+#include "core/exr_io.h"
+#include "lights/light.h"
+#include "scene/gi_settings.h"
+#include "scene/photon_settings.h"
+#include "scene/quality.h"
+#include "sky/sky_scene.h"
+#include "surface/material.h"
+#include "surface/shape.h"
+#include "volume/in_scattering.h"
+#include "volume/medium.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace kasumi {
+
+struct FilmDesc {
+    int width = 640;     ///< pixels, 1..16384
+    int height = 360;    ///< pixels, 1..16384
+    int spp = 16;        ///< samples per pixel, >= 1
+    bool jitter = true;  ///< false: every sample through the pixel centre (peer comparisons)
+    /// EXR pixel type of R, G, B, A (AOVs stay float); half saturates beyond 65504 (exr_io.h)
+    ExrPixelType pixel_type = ExrPixelType::Float;
+};
+
+struct PreviewDesc {
+    std::string view = "ACES 1.0 - SDR Video";  ///< OCIO view of the sRGB display
+    float exposure_stops = 0.0f;
+};
+
+/// Whitted recursion through mirrors and dielectrics (render/whitted.h).
+struct WhittedSettings {
+    int max_depth = 5;         ///< specular bounces after the camera ray's first hit, [0, 64]
+    float min_weight = 1e-3f;  ///< a branch whose path weight falls below this is not traced
+};
+
+struct RenderSettings {
+    uint64_t seed = 0;
+    int threads = 0;      ///< 0: all hardware threads
+    int tile_size = 16;   ///< pixels
+    bool shadows = true;  ///< shadow rays for surfaces and media
+    VolumeSettings volume;
+    WhittedSettings whitted;
+    SkySettings sky;           ///< render.sky, render.spectral, render.wavelengths_nm (docs/sky.md)
+    GiMode gi = GiMode::None;  ///< render.gi: global illumination method
+    PathSettings path;
+    RadiositySettings radiosity;
+    PhotonSettings photons;  ///< render.photons (scene/photon_settings.h)
+    PreviewDesc preview;
+    QualityChoice quality;  ///< render.quality and what it set (scene/quality.h)
+};
+
+struct SceneDesc {
+    std::string file;      ///< the scene file, as given
+    std::string base_dir;  ///< directory relative paths resolve against
+    CameraDesc camera;
+    FilmDesc film;
+    std::vector<std::string> material_names;
+    std::vector<Material> materials;
+    std::vector<Shape> shapes;
+    std::vector<Light> lights;
+    std::vector<Medium> media;
+    Rgb ambient{0.0f};     ///< ambient radiance (cd/m²) that the Phong ka term reflects
+    Rgb background{0.0f};  ///< radiance (cd/m²) of rays that leave the scene
+    std::shared_ptr<const SkyScene> sky;  ///< "atmosphere" + "sun"; null without an atmosphere
+    RenderSettings render;
+};
+
+}  // namespace kasumi

@@ -1,0 +1,277 @@
+#include "scene/scene_loader.h"
+
+#include "core/error.h"
+#include "core/json_choice.h"
+#include "core/json_int.h"
+#include "lights/light_json.h"
+#include "scene/animation.h"
+#include "scene/quality.h"
+#include "sky/sky_renderer.h"
+#include "volume/medium_json.h"
+#include "volume/medium_set.h"
+#include "volume/transmittance.h"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace kasumi {
+
+namespace {
+
+CameraDesc parse_camera(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    CameraDesc camera;
+    if (auto v = reader.optional("position"))
+        camera.position = v->as_point();
+    if (auto v = reader.optional("look_at"))
+        camera.look_at = v->as_point();
+    if (auto v = reader.optional("up"))
+        camera.up = v->unit_direction();
+    if (auto v = reader.optional("fov_deg"))
+        camera.fov_deg = v->in_open(0.0f, 180.0f);
+    reader.finish();
+    const Vec3 forward = camera.look_at - camera.position;
+    const float distance = glm::length(forward);
+    if (!(distance > 0.0f)) {
+        // Distinct in double but not in float: the squared distance underflowed.
+        if (glm::length(DVec3(camera.look_at) - DVec3(camera.position)) > 0.0)
+            node.fail("position and look_at are too close together for single precision");
+        node.fail("position and look_at must differ");
+    }
+    if (!std::isfinite(distance))
+        node.fail("position and look_at are too far apart for single precision");
+    if (!(glm::length(glm::cross(glm::normalize(forward), camera.up)) > 1e-6f)) {
+        node.fail("up must not be parallel to the view direction");
+    }
+    return camera;
+}
+
+FilmDesc parse_film(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    FilmDesc film;
+    if (auto v = reader.optional("width"))
+        film.width = parse_int_in(*v, 1, 16384);
+    if (auto v = reader.optional("height"))
+        film.height = parse_int_in(*v, 1, 16384);
+    if (auto v = reader.optional("spp"))
+        film.spp = parse_int_in(*v, 1, 1 << 20);
+    if (auto v = reader.optional("jitter"))
+        film.jitter = v->as_bool();
+    if (auto v = reader.optional("pixel_type")) {
+        if (!parse_exr_pixel_type(v->as_string(), film.pixel_type))
+            v->fail("must be \"float\" or \"half\"");
+    }
+    reader.finish();
+    return film;
+}
+
+RenderSettings parse_render(const JsonNode& node) {
+    JsonObjectReader reader(node);
+    RenderSettings render;
+    if (auto v = reader.optional("seed")) {
+        const int64_t seed = v->as_int();
+        if (seed < 0)
+            v->fail("must be >= 0");
+        render.seed = static_cast<uint64_t>(seed);
+    }
+    if (auto v = reader.optional("threads"))
+        render.threads = parse_int_in(*v, 0, 1024);
+    if (auto v = reader.optional("tile_size"))
+        render.tile_size = parse_int_in(*v, 1, 1024);
+    if (auto v = reader.optional("shadows"))
+        render.shadows = v->as_bool();
+    if (auto v = reader.optional("volume")) {
+        JsonObjectReader volume(*v);
+        if (auto step = volume.optional("step_m"))
+            render.volume.step_m = step->positive();
+        if (auto step = volume.optional("step_voxels"))
+            render.volume.step_voxels = step->positive();
+        if (auto e = volume.optional("estimator")) {
+            const auto estimator = estimator_from_name(e->as_string());
+            if (!estimator)
+                e->fail("expected \"march\", \"delta\", \"ratio\" or \"residual-ratio\"");
+            render.volume.estimator = *estimator;
+            render.volume.estimator_given = true;
+        }
+        if (auto integrator = volume.optional("integrator"))
+            render.volume.integrator = parse_choice<VolumeIntegrator>(
+                *integrator,
+                {{"single", VolumeIntegrator::Single}, {"multiple", VolumeIntegrator::Multiple}});
+        if (auto depth = volume.optional("max_depth"))
+            render.volume.max_depth = parse_int_in(*depth, 1, 1 << 16);
+        if (auto cache = volume.optional("light_cache"))
+            render.volume.light_cache = cache->as_bool();
+        if (auto points = volume.optional("nee_points"))
+            render.volume.nee_points = parse_int_in(*points, 0, 64);
+        if (auto intervals = volume.optional("shadow_intervals"))
+            render.volume.shadow_intervals = parse_int_in(*intervals, 0, 4096);
+        if (auto roulette = volume.optional("nee_roulette"))
+            render.volume.nee_roulette = roulette->as_bool();
+        if (auto sampling = volume.optional("light_sampling"))
+            render.volume.light_sampling = parse_choice<LightSampling>(
+                *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});
+        volume.finish();
+    }
+    if (auto v = reader.optional("whitted")) {
+        JsonObjectReader whitted(*v);
+        if (auto depth = whitted.optional("max_depth"))
+            render.whitted.max_depth = parse_int_in(*depth, 0, 64);
+        if (auto weight = whitted.optional("min_weight"))
+            render.whitted.min_weight = weight->in_closed(0.0f, 1.0f);
+        whitted.finish();
+    }
+    if (auto v = reader.optional("gi"))
+        render.gi = parse_gi_mode(*v);
+    if (auto v = reader.optional("path"))
+        render.path = parse_path_settings(*v);
+    if (auto v = reader.optional("radiosity"))
+        render.radiosity = parse_radiosity_settings(*v);
+    if (auto v = reader.optional("photons"))
+        render.photons = parse_photon_settings(*v);
+    reader.optional("quality");  // validated and applied by apply_quality (scene/quality.h)
+    if (auto v = reader.optional("preview")) {
+        JsonObjectReader preview(*v);
+        if (auto view = preview.optional("view"))
+            render.preview.view = view->as_string();
+        if (auto e = preview.optional("exposure_stops"))
+            render.preview.exposure_stops = e->as_float();
+        preview.finish();
+    }
+    parse_sky_render_keys(reader, render.sky);
+    reader.finish();
+    return render;
+}
+
+/// Walks a JSON pointer to the parent container of its last token; fails unless it exists.
+Json& pointer_parent(Json& root, const std::string& pointer, const std::string& file,
+                     std::string& last_token) {
+    const auto slash = pointer.rfind('/');
+    const std::string parent = pointer.substr(0, slash);
+    last_token = pointer.substr(slash + 1);
+    try {
+        Json& container = root.at(Json::json_pointer(parent));
+        if (!container.is_object() && !container.is_array()) {
+            throw_input_error(file + ": --set " + pointer + ": " + (parent.empty() ? "/" : parent) +
+                              " is not an object or array");
+        }
+        return container;
+    } catch (const Json::exception&) {
+        throw_input_error(file + ": --set " + pointer + ": " + (parent.empty() ? "/" : parent) +
+                          " does not exist in the scene");
+    }
+}
+
+}  // namespace
+
+Override parse_override(const std::string& text) {
+    const auto eq = text.find('=');
+    if (text.empty() || text[0] != '/' || eq == std::string::npos) {
+        throw Error(ErrorKind::Usage, "--set expects /json/pointer=VALUE, got \"" + text + "\"");
+    }
+    return Override{text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void apply_overrides(Json& root, const std::vector<Override>& overrides, const std::string& file) {
+    for (const Override& o : overrides) {
+        Json value;
+        try {
+            value = Json::parse(o.value);
+        } catch (const Json::parse_error&) {
+            value = o.value;  // not JSON: a string
+        }
+        try {
+            (void)Json::json_pointer(o.pointer);
+        } catch (const Json::exception& e) {
+            throw Error(ErrorKind::Usage, "--set " + o.pointer + ": invalid JSON pointer");
+        }
+        std::string token;
+        Json& parent = pointer_parent(root, o.pointer, file, token);
+        if (parent.is_array()) {
+            std::size_t index = 0;
+            try {
+                index = std::stoul(token);
+            } catch (const std::exception&) {
+                throw_input_error(file + ": --set " + o.pointer + ": \"" + token +
+                                  "\" is not an array index");
+            }
+            if (index >= parent.size()) {
+                throw_input_error(file + ": --set " + o.pointer + ": index out of range");
+            }
+            parent[index] = value;
+        } else {
+            root[Json::json_pointer(o.pointer)] = value;
+        }
+    }
+}
+
+SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCache* cache) {
+    Json with_quality = root_value;
+    QualityChoice quality = apply_quality(with_quality, file);
+    const JsonNode root(with_quality, file);
+    JsonObjectReader reader(root);
+    SceneDesc scene;
+    scene.file = file;
+    scene.base_dir = std::filesystem::path(file).parent_path().string();
+
+    if (auto v = reader.optional("camera"))
+        scene.camera = parse_camera(*v);
+    if (auto v = reader.optional("film"))
+        scene.film = parse_film(*v);
+    if (auto v = reader.optional("render"))
+        scene.render = parse_render(*v);
+    if (auto v = reader.optional("ambient"))
+        scene.ambient = v->non_negative_rgb();
+    if (auto v = reader.optional("background"))
+        scene.background = v->non_negative_rgb();
+
+    std::map<std::string, uint32_t> material_index;
+    if (auto v = reader.optional("materials")) {
+        if (!v->is_object())
+            v->fail("expected an object of named materials");
+        for (const auto& item : v->value().items()) {
+            const JsonNode m = v->child(item.key());
+            material_index[item.key()] = static_cast<uint32_t>(scene.materials.size());
+            scene.material_names.push_back(item.key());
+            scene.materials.push_back(parse_material(m));
+        }
+    }
+    if (auto v = reader.optional("shapes")) {
+        for (const JsonNode& s : v->elements()) {
+            scene.shapes.push_back(cache ? cache->shape(s, material_index, scene.base_dir)
+                                         : parse_shape(s, material_index, scene.base_dir));
+        }
+    }
+    if (auto v = reader.optional("lights")) {
+        for (const JsonNode& l : v->elements()) {
+            scene.lights.push_back(cache ? cache->light(l, scene.lights.size())
+                                         : parse_light(l, scene.lights.size()));
+        }
+    }
+    if (auto v = reader.optional("media")) {
+        if (v->size() > kMaxMedia)
+            v->fail("at most " + std::to_string(kMaxMedia) + " media");
+        for (const JsonNode& m : v->elements()) {
+            scene.media.push_back(cache ? cache->medium(m, scene.media.size(), scene.base_dir)
+                                        : parse_medium(m, scene.media.size(), scene.base_dir));
+        }
+    }
+    // Unless the scene names one: exact stretches suit homogeneous media, residual ratio
+    // tracking (unbiased, exact where a brick is constant) suits grids.
+    if (!scene.render.volume.estimator_given) {
+        scene.render.volume.estimator =
+            MediumSet(scene.media).all_homogeneous() ? Estimator::March : Estimator::ResidualRatio;
+    }
+    parse_sky_keys(reader, scene.render.sky, scene.sky, scene.lights);
+    choose_integrator(with_quality, scene.media, scene.render.volume.integrator, quality);
+    scene.render.quality = quality;
+    reader.optional("comment");  // free text for the scene's author
+    reader.finish();
+    return scene;
+}
+
+SceneDesc load_scene(const std::string& path, const std::vector<Override>& overrides) {
+    return parse_scene(animated_document(read_json_file(path), overrides, 0, path), path);
+}
+
+}  // namespace kasumi

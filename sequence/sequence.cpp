@@ -1,0 +1,408 @@
+#include "sequence/sequence.h"
+
+#include "core/color_management.h"
+#include "core/error.h"
+#include "core/exr_io.h"
+#include "render/renderer.h"
+#include "scene/animation.h"
+#include "sequence/sequence_contact_sheet.h"
+#include "sequence/sequence_writer.h"
+
+#include <chrono>
+#include <cstdarg>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+
+namespace kasumi {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int64_t kMaxFrame = 4294967295;  // the RNG keys frames by 32 bits
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool parse_int64(const std::string& text, int64_t& out) {
+    if (text.empty() || text.size() > 12)
+        return false;
+    out = 0;
+    for (const char c : text) {
+        if (c < '0' || c > '9')
+            return false;
+        out = out * 10 + (c - '0');
+    }
+    return true;
+}
+
+void make_parent_dirs(const std::string& path) {
+    const fs::path parent = fs::path(path).parent_path();
+    if (parent.empty())
+        return;
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec)
+        throw_output_error(path + ": cannot create directory " + parent.string() + ": " +
+                           ec.message());
+}
+
+void log_line(std::FILE* log, const char* format, ...) __attribute__((format(printf, 2, 3)));
+void log_line(std::FILE* log, const char* format, ...) {
+    if (log == nullptr)
+        return;
+    va_list args;
+    va_start(args, format);
+    std::vfprintf(log, format, args);
+    va_end(args);
+    std::fflush(log);
+}
+
+/// The scene document every frame starts from: as `kasumi render` builds it, with film and
+/// render objects created for --res/--spp/--seed overrides, the overrides applied.
+Json base_document(const SequenceOptions& options) {
+    Json doc = read_json_file(options.scene_path);
+    if (doc.is_object()) {
+        for (const char* key : {"film", "render"}) {
+            if (!doc.contains(key))
+                doc[key] = Json::object();
+        }
+    }
+    apply_overrides(doc, options.overrides, options.scene_path);
+    return doc;
+}
+
+PreviewSettings preview_settings(const SceneDesc& desc) {
+    PreviewSettings preview;
+    preview.config_path = default_ocio_config_path();
+    preview.view = desc.render.preview.view;
+    preview.exposure_stops = desc.render.preview.exposure_stops;
+    return preview;
+}
+
+/// What stays fixed over a run: the base document, its animation, the element cache.
+struct SequenceScene {
+    const SequenceOptions& options;
+    Json base;
+    Animation animation;
+    SequenceCache cache;
+
+    explicit SequenceScene(const SequenceOptions& o)
+        : options(o),
+          base(base_document(o)),
+          animation(parse_animation(base, o.scene_path)),
+          cache(o.reuse) {}
+
+    Json document(int64_t frame) const {
+        Json doc = frame_document(base, animation, frame);
+        reapply_overrides(doc, options.overrides, options.scene_path);
+        return doc;
+    }
+
+    /// The scene of `frame`'s document; an input error says where the frame lies among the
+    /// key frames, as `kasumi check` does (frame_context).
+    SceneDesc parse(const Json& doc, int64_t frame) {
+        try {
+            return parse_scene(doc, options.scene_path, &cache);
+        } catch (const Error& e) {
+            if (e.kind() != ErrorKind::Input || animation.empty())
+                throw;
+            throw Error(e.kind(), e.what() + frame_context(animation, frame, e.what()));
+        }
+    }
+};
+
+}  // namespace
+
+std::vector<int64_t> FrameRange::frames() const {
+    std::vector<int64_t> out;
+    for (int64_t f = first; f <= last; f += step)
+        out.push_back(f);
+    return out;
+}
+
+FrameRange parse_frame_range(const std::string& text, const std::string& option) {
+    const auto usage = [&] {
+        throw Error(ErrorKind::Usage, option + " expects A-B[:step] or N (frames 0 to " +
+                                          std::to_string(kMaxFrame) +
+                                          ", A <= B, step >= 1), got \"" + text + "\"");
+    };
+    FrameRange range;
+    std::string span = text;
+    const size_t colon = text.find(':');
+    if (colon != std::string::npos) {
+        span = text.substr(0, colon);
+        if (!parse_int64(text.substr(colon + 1), range.step) || range.step < 1)
+            usage();
+    }
+    const size_t dash = span.find('-');
+    if (dash == std::string::npos) {
+        if (colon != std::string::npos || !parse_int64(span, range.first))
+            usage();
+        range.last = range.first;
+    } else if (!parse_int64(span.substr(0, dash), range.first) ||
+               !parse_int64(span.substr(dash + 1), range.last)) {
+        usage();
+    }
+    if (range.first > range.last || range.last > kMaxFrame)
+        usage();
+    return range;
+}
+
+std::string frame_path(const std::string& pattern, int64_t frame) {
+    std::string out;
+    bool found = false;
+    for (size_t i = 0; i < pattern.size();) {
+        if (pattern[i] != '#') {
+            out += pattern[i++];
+            continue;
+        }
+        size_t n = 0;
+        while (i + n < pattern.size() && pattern[i + n] == '#')
+            ++n;
+        std::string digits = std::to_string(frame);
+        if (digits.size() < n)
+            digits.insert(0, n - digits.size(), '0');
+        out += digits;
+        i += n;
+        found = true;
+    }
+    if (!found) {
+        throw Error(ErrorKind::Usage, "-o \"" + pattern +
+                                          "\": the output pattern needs a run of '#' for the "
+                                          "frame number, e.g. out/sunset.####.exr");
+    }
+    return out;
+}
+
+std::string frame_preview_path(const std::string& pattern, const std::string& preview_dir,
+                               int64_t frame) {
+    fs::path name = fs::path(frame_path(pattern, frame)).filename();
+    name.replace_extension(".png");
+    return (fs::path(preview_dir) / name).string();
+}
+
+std::string default_contact_sheet_path(const std::string& pattern, const std::string& preview_dir) {
+    const fs::path p(pattern);
+    const std::string file = p.filename().string();
+    const std::string name = file.substr(0, file.find('#')) + "contact_sheet.png";
+    const fs::path dir = preview_dir.empty() ? p.parent_path() : fs::path(preview_dir);
+    return (dir / name).string();
+}
+
+SequenceSummary run_sequence(const SequenceOptions& options) {
+    const auto run_start = Clock::now();
+    for (const int64_t f : options.frames) {
+        if (f < 0 || f > kMaxFrame)
+            throw Error(ErrorKind::Usage, "frame " + std::to_string(f) + " is out of range");
+    }
+    (void)frame_path(options.output_pattern, 0);  // a pattern without '#' is a usage error
+    SequenceScene scene(options);
+    SequenceSummary summary;
+    const bool want_sheet = !options.contact_sheet.empty();
+
+    // Touched by the writer's tasks only, until writer.finish() (declared before the writer,
+    // whose destructor may still run tasks while an exception unwinds).
+    std::map<int64_t, Image> thumbnails;
+    size_t written = 0;
+    double frame_seconds_sum = 0.0, write_seconds_sum = 0.0;
+    // Images the writer is done with, refilled by the next frames (no allocation per frame).
+    std::mutex spare_mutex;
+    std::vector<Image> spare_images;
+
+    std::unique_ptr<SequenceWriter> writer;
+    if (options.write_queue > 0)
+        writer = std::make_unique<SequenceWriter>(options.write_queue);
+    // Runs `task` on the writer thread, after the earlier frames' files (or here and now).
+    const auto dispatch = [&](std::function<void()> task) {
+        if (writer != nullptr)
+            writer->submit(std::move(task));
+        else
+            task();
+    };
+    const auto log_later = [&](std::string line) {
+        dispatch(
+            [log = options.log, line = std::move(line)] { log_line(log, "%s", line.c_str()); });
+    };
+
+    for (const int64_t frame : options.frames) {
+        if (!options.render)
+            break;
+        if (writer != nullptr)
+            writer->check();  // a failed write stops the run before rendering more
+        if (options.cancel != nullptr && options.cancel->load()) {
+            summary.interrupted = true;
+            break;
+        }
+        const std::string path = frame_path(options.output_pattern, frame);
+        const std::string preview_path =
+            options.preview_dir.empty()
+                ? std::string()
+                : frame_preview_path(options.output_pattern, options.preview_dir, frame);
+        const std::string frame_name = frame_path("######", frame);
+        if (options.skip_existing && fs::exists(path)) {
+            ++summary.skipped;
+            if (!preview_path.empty() && !fs::exists(preview_path)) {
+                const PreviewSettings own =
+                    preview_settings(scene.parse(scene.document(frame), frame));
+                dispatch([=, log = options.log] {
+                    make_parent_dirs(preview_path);
+                    write_preview_png(read_exr(path), preview_path, own);
+                    log_line(log, "frame %s  exists, skipped (preview %s written)\n",
+                             frame_name.c_str(), preview_path.c_str());
+                });
+            } else {
+                log_later("frame " + frame_name + "  exists, skipped: " + path + "\n");
+            }
+            continue;
+        }
+
+        const auto frame_start = Clock::now();
+        const Json doc = scene.document(frame);
+        SceneDesc desc = scene.parse(doc, frame);
+        const std::string key = options.reuse ? bvh_key(doc) : std::string();
+        std::shared_ptr<const SurfaceScene> bvh = scene.cache.surfaces(key);
+        const bool bvh_reused = bvh != nullptr;
+        const std::string sky_key =
+            options.reuse ? sky_tables_key(doc, options.scene_path, desc.sky.get()) : std::string();
+        std::shared_ptr<const SkyLuts> sky_tables = scene.cache.sky_tables(sky_key);
+        const SceneRuntime runtime(std::move(desc), std::move(bvh), std::move(sky_tables));
+        if (runtime.surfaces() != nullptr && !bvh_reused) {
+            scene.cache.count_bvh_built();
+            scene.cache.remember_surfaces(key, runtime.shared_surfaces());
+        }
+        if (runtime.sky() != nullptr && runtime.sky()->shared_tables() != nullptr &&
+            !runtime.sky()->tables_reused()) {
+            scene.cache.count_sky_tables_built();
+            scene.cache.remember_sky_tables(sky_key, runtime.sky()->shared_tables());
+        }
+        const double setup_seconds = seconds_since(frame_start);
+
+        RenderOptions render_options;
+        render_options.threads = options.threads;
+        render_options.frame = static_cast<uint32_t>(frame);
+        render_options.progress = options.progress;
+        render_options.cancel = options.cancel;
+        render_options.aovs = options.aovs;
+        RenderResult result = render_image(runtime, render_options);
+        const ReuseCounts reuse = scene.cache.end_frame();
+        if (result.interrupted) {
+            summary.interrupted = true;
+            log_later("frame " + frame_name + "  interrupted: dropped, nothing written\n");
+            break;
+        }
+        summary.render_seconds += result.seconds;
+
+        const auto image_start = Clock::now();
+        Image image;
+        {
+            std::lock_guard<std::mutex> lock(spare_mutex);
+            if (!spare_images.empty()) {
+                image = std::move(spare_images.back());
+                spare_images.pop_back();
+            }
+        }
+        result.film.to_image(image, options.aovs);
+        image.metadata = options.metadata;
+        image.metadata.insert(
+            image.metadata.end(),
+            {{"scene", options.scene_path},
+             {"frame", std::to_string(frame)},
+             {"spp", std::to_string(runtime.desc().film.spp)},
+             {"seed", std::to_string(runtime.desc().render.seed)},
+             {"units", "scene-linear Rec.709, luminance in cd/m2"},
+             {"stats/nonfinite_samples", std::to_string(result.counters.nonfinite_samples)}});
+        const PreviewSettings preview =
+            preview_path.empty() ? PreviewSettings{} : preview_settings(runtime.desc());
+        // Time spent on this frame here; the writer adds its own.
+        const double main_seconds = seconds_since(frame_start);
+        const double image_seconds = seconds_since(image_start);
+        const double render_seconds = result.seconds;
+        const uint64_t nonfinite = result.counters.nonfinite_samples;
+        const std::string reuse_line = reuse_text(reuse);
+        const ExrPixelType pixel_type = runtime.desc().film.pixel_type;
+
+        dispatch([&, frame, path, preview_path, preview, frame_name, main_seconds, setup_seconds,
+                  image_seconds, render_seconds, nonfinite, reuse_line, pixel_type,
+                  image = std::move(image)]() mutable {
+            const auto write_start = Clock::now();
+            if (!preview_path.empty()) {
+                make_parent_dirs(preview_path);
+                write_preview_png(image, preview_path, preview);
+            }
+            make_parent_dirs(path);
+            const ExrWriteReport half_report =
+                write_exr(image, path, options.compression, pixel_type);
+            if (want_sheet)
+                thumbnails.emplace(frame, make_thumbnail(image));
+            const double write_seconds = image_seconds + seconds_since(write_start);
+            const double frame_seconds = main_seconds + seconds_since(write_start);
+            ++written;
+            frame_seconds_sum += frame_seconds;
+            write_seconds_sum += write_seconds;
+            log_line(options.log,
+                     "frame %s  %.3f s (scene %.3f s, render %.3f s, write %.3f s)  %s  -> %s\n",
+                     frame_name.c_str(), frame_seconds, setup_seconds, render_seconds,
+                     write_seconds, reuse_line.c_str(), path.c_str());
+            if (nonfinite > 0) {
+                log_line(options.log, "frame %s  warning: %llu non-finite samples were dropped\n",
+                         frame_name.c_str(), static_cast<unsigned long long>(nonfinite));
+            }
+            if (half_report.half_saturated > 0) {
+                log_line(options.log,
+                         "frame %s  warning: %llu values of R, G, B, A beyond the half range "
+                         "(largest %g) written as 65504 (film.pixel_type half)\n",
+                         frame_name.c_str(),
+                         static_cast<unsigned long long>(half_report.half_saturated),
+                         static_cast<double>(half_report.half_max_abs));
+            }
+            image.metadata.clear();
+            std::lock_guard<std::mutex> lock(spare_mutex);
+            if (spare_images.size() < 2)
+                spare_images.push_back(std::move(image));
+        });
+    }
+    if (writer != nullptr)
+        writer->finish();  // every rendered frame is on disk, or the first failure is thrown
+    summary.rendered = written;
+    summary.frame_seconds = frame_seconds_sum;
+    summary.write_seconds = write_seconds_sum;
+    summary.reuse = scene.cache.total();
+
+    if (want_sheet && !summary.interrupted && !options.frames.empty()) {
+        std::vector<Image> loaded;
+        loaded.reserve(options.frames.size());
+        std::vector<const Image*> cells;
+        for (const int64_t frame : options.frames) {
+            const auto it = thumbnails.find(frame);
+            if (it != thumbnails.end()) {
+                cells.push_back(&it->second);
+                continue;
+            }
+            const std::string path = frame_path(options.output_pattern, frame);
+            if (!fs::exists(path)) {
+                ++summary.missing;
+                cells.push_back(nullptr);
+                continue;
+            }
+            loaded.push_back(make_thumbnail(read_exr(path)));
+            cells.push_back(&loaded.back());
+        }
+        // One view and exposure for the whole sheet (the first frame's), so it shows how the
+        // frames' brightness changes.
+        const PreviewSettings sheet_preview = preview_settings(
+            scene.parse(scene.document(options.frames.front()), options.frames.front()));
+        make_parent_dirs(options.contact_sheet);
+        write_preview_png(make_contact_sheet(cells), options.contact_sheet, sheet_preview);
+        summary.contact_sheet = options.contact_sheet;
+    }
+    summary.seconds = seconds_since(run_start);
+    return summary;
+}
+
+}  // namespace kasumi
