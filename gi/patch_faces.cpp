@@ -56,18 +56,6 @@ uint32_t face_index(const Shape& shape, uint32_t primitive) {
     return std::holds_alternative<MeshShape>(shape.geometry) ? primitive : primitive / 2;
 }
 
-Vec3 face_centroid(const ShapeFace& face) {
-    if (face.vertex_count == 3)
-        return (face.vertices[0] + face.vertices[1] + face.vertices[2]) / 3.0f;
-    // Split into two triangles (v0 v1 v2), (v0 v2 v3) and weight their centroids by area.
-    const Vec3* v = face.vertices.data();
-    const float a1 = glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
-    const float a2 = glm::length(glm::cross(v[2] - v[0], v[3] - v[0]));
-    const Vec3 c1 = (v[0] + v[1] + v[2]) / 3.0f, c2 = (v[0] + v[2] + v[3]) / 3.0f;
-    const float sum = a1 + a2;
-    return sum > 0.0f ? (a1 * c1 + a2 * c2) / sum : c1;
-}
-
 Vec3 face_point(const ShapeFace& face, Vec2 uv) {
     const Vec3* v = face.vertices.data();
     if (face.vertex_count == 3)

@@ -32,9 +32,6 @@ std::vector<ShapeFace> shape_faces(const Shape& shape, uint32_t shape_index);
 /// to: quads and boxes are two triangles per face, meshes one.
 uint32_t face_index(const Shape& shape, uint32_t primitive);
 
-/// Area-weighted centroid (m) of a face.
-Vec3 face_centroid(const ShapeFace& face);
-
 /// The point of the face at parameters (u, v): bilinear over a quad's corners v0 (0, 0), v1
 /// (1, 0), v2 (1, 1), v3 (0, 1); v0 + u (v1 − v0) + v (v2 − v0) on a triangle.
 Vec3 face_point(const ShapeFace& face, Vec2 uv);

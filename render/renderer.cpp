@@ -45,12 +45,6 @@ CameraSample camera_sample(const SceneRuntime& scene, int x, int y, int sample, 
 
 }  // namespace
 
-PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame,
-                                RenderCounters& counters) {
-    CameraSample c = camera_sample(scene, x, y, sample, frame);
-    return trace_camera_ray(scene, c.ray, c.rng, counters);
-}
-
 RenderResult render_image(const SceneRuntime& scene, const RenderOptions& options) {
     const SceneDesc& desc = scene.desc();
     const int width = desc.film.width, height = desc.film.height, spp = desc.film.spp;

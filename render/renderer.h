@@ -29,8 +29,4 @@ struct RenderResult {
 
 RenderResult render_image(const SceneRuntime& scene, const RenderOptions& options);
 
-/// One sample of pixel (x, y): the generator and sub-pixel position both come from the key.
-PixelSample render_pixel_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame,
-                                RenderCounters& counters);
-
 }  // namespace kasumi

@@ -2,7 +2,7 @@
 /// What the renderer builds from a scene description, stage by stage as the plan says: the
 /// Embree scene only with shapes, the media only with media.
 #include "core/camera.h"
-#include "core/scene_queries.h"
+#include "core/occlusion_query.h"
 #include "scene/plan.h"
 #include "scene/scene.h"
 #include "sky/sky_renderer.h"

@@ -5,18 +5,6 @@
 
 namespace kasumi {
 
-const char* shading_name(Shading shading) {
-    switch (shading) {
-        case Shading::Flat:
-            return "flat";
-        case Shading::Gouraud:
-            return "gouraud";
-        case Shading::Phong:
-            return "phong";
-    }
-    return "?";
-}
-
 std::vector<Vec3> angle_weighted_normals(const std::vector<Vec3>& positions,
                                          const std::vector<std::array<uint32_t, 3>>& triangles) {
     std::vector<DVec3> sum(positions.size(), DVec3(0.0));

@@ -16,9 +16,6 @@ enum class Shading {
     Phong,    ///< vertex normals interpolated and renormalised, lighting per hit
 };
 
-/// "flat", "gouraud" or "phong".
-const char* shading_name(Shading shading);
-
 /// Barycentric interpolation with Embree's coordinates: (1 - u - v) a0 + u a1 + v a2, so
 /// (u, v) = (0, 0), (1, 0), (0, 1) give the vertices exactly.
 template <typename T>

@@ -2,8 +2,8 @@
 /// The volume stage along one camera ray: transmittance and single-scattered radiance of the
 /// scene's media over [0, t_end), with light reaching each sample attenuated by the media and
 /// blocked by surfaces.
+#include "core/occlusion_query.h"
 #include "core/rng.h"
-#include "core/scene_queries.h"
 #include "lights/light.h"
 #include "volume/medium_set.h"
 

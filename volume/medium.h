@@ -71,11 +71,4 @@ struct Medium {
     std::variant<HomogeneousMedium, VdbMedium, HeightFogMedium> model;
 };
 
-/// Single-scattering albedo sigma_s / sigma_t per channel (0 where sigma_t = 0).
-inline Rgb single_scattering_albedo(const HomogeneousMedium& m) {
-    const Rgb t = m.sigma_t();
-    return Rgb(t.r > 0 ? m.sigma_s.r / t.r : 0.0f, t.g > 0 ? m.sigma_s.g / t.g : 0.0f,
-               t.b > 0 ? m.sigma_s.b / t.b : 0.0f);
-}
-
 }  // namespace kasumi

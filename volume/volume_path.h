@@ -3,7 +3,7 @@
 /// the light scattered toward the camera, single (next-event estimation to every light) or
 /// multiple (volumetric path tracing with next-event estimation and Russian roulette).
 #include "core/rng.h"
-#include "core/scene_queries.h"
+#include "core/occlusion_query.h"
 #include "lights/light.h"
 #include "volume/in_scattering.h"
 #include "volume/medium_set.h"

@@ -169,13 +169,6 @@ Rgb photon_phong_radiance(const PhotonRenderContext& c, const SurfaceHit& hit, c
     return radiance;
 }
 
-Rgb global_map_radiance(const PhotonRenderContext& context, const SurfaceHit& hit, const Vec3& wo) {
-    const auto* phong = std::get_if<PhongMaterial>(&context.scene.desc().materials[hit.material]);
-    if (phong == nullptr)
-        return Rgb(0.0f);
-    return map_radiance(context, context.maps.global, *phong, hit, wo);
-}
-
 Rgb volume_map_radiance(const PhotonRenderContext& c, const Ray& segment, Pcg32& rng) {
     const MediumSet& media = c.scene.media();
     thread_local std::vector<MajorantSegment> segments;

@@ -28,10 +28,6 @@ struct PhotonRenderContext {
 Rgb photon_phong_radiance(const PhotonRenderContext& context, const SurfaceHit& hit, const Vec3& wo,
                           Pcg32& rng, RenderCounters& counters);
 
-/// Reflected radiance at a Phong hit toward wo read from the global map alone (the estimate a
-/// final-gather ray uses), with the map's full Phong BRDF.
-Rgb global_map_radiance(const PhotonRenderContext& context, const SurfaceHit& hit, const Vec3& wo);
-
 /// In-scattered radiance from the volume map along a ray segment [t_min, t_max): the march
 /// Σ h T(t_i) σ_s ∫ p L dω at nodes t_i spaced h = render.volume.step_m with one random offset
 /// per ray (unbiased in the march for a given estimate; the estimate itself is biased by its
