@@ -5,6 +5,7 @@
 #include "apps/scene_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "gi/gi.h"
 #include "render/probe.h"
 #include "render/renderer.h"
 #include "scene/animation.h"
@@ -181,7 +182,7 @@ void add_render_command(CLI::App& root) {
             check_output_writable(paths.preview);
 
         const auto build_start = std::chrono::steady_clock::now();
-        const SceneRuntime runtime(std::move(desc));
+        const SceneRuntime runtime(std::move(desc), make_gi_method);
         times.build_s = seconds_since(build_start);
         add_stage_parts(times, runtime);
         if (scene_options.verbose)
@@ -339,7 +340,7 @@ void add_probe_command(CLI::App& root) {
         if (!(glm::length(direction) > 0.0f)) {
             throw Error(ErrorKind::Usage, "--direction must be a non-zero vector");
         }
-        const SceneRuntime runtime(options->scene.load());
+        const SceneRuntime runtime(options->scene.load(), make_gi_method);
         const int spp = options->spp > 0 ? options->spp : runtime.desc().film.spp;
         const RadianceProbe p = probe_radiance(runtime, origin, direction, spp);
         print_json(Json{{"radiance", rgb_json(p.radiance)},
@@ -376,7 +377,7 @@ void add_probe_command(CLI::App& root) {
                                 t_options->estimator + "\"");
             }
         }
-        const SceneRuntime runtime(t_options->scene.load());
+        const SceneRuntime runtime(t_options->scene.load(), make_gi_method);
         const Estimator chosen = estimator ? *estimator : runtime.desc().render.volume.estimator;
         const TransmittanceProbe p =
             probe_transmittance(runtime, from, to, chosen, t_options->samples);

@@ -2,6 +2,7 @@
 
 #include "apps/scene_options.h"
 #include "core/error.h"
+#include "gi/gi.h"
 #include "render/illuminance.h"
 
 #include <iostream>
@@ -49,7 +50,7 @@ void add_illuminance_command(CLI::App& probe) {
         const Vec3 normal = to_vec3(options->normal, "--normal");
         if (!(glm::length(normal) > 0.0f))
             throw Error(ErrorKind::Usage, "--normal must be a non-zero vector");
-        const SceneRuntime runtime(options->scene.load());
+        const SceneRuntime runtime(options->scene.load(), make_gi_method);
         const IlluminanceProbe p = probe_illuminance(runtime, at, glm::normalize(normal),
                                                      !options->no_shadows, options->samples);
         Json per_light = Json::array();

@@ -4,7 +4,6 @@
 #include "core/color_management.h"
 #include "core/error.h"
 #include "core/exr_io.h"
-#include "gi/gi.h"
 
 #include <filesystem>
 #include <sstream>

@@ -7,6 +7,7 @@
 // only the CPU time is comparable between runs.
 //   sky_bench [--scene S] [--sequence S] [--reps N] [--frames N] [--paths N] [--out DIR]
 //             [--aovs all|none|LIST] [--compression zip|piz|rle|none] [--write-queue N]
+#include "gi/gi.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "sequence/sequence.h"
@@ -148,7 +149,7 @@ int main(int argc, char** argv) {
         SceneDesc desc = load_scene(scene);
         if (desc.sky)
             sun_elevation = desc.sky->sun.elevation_deg;
-        const SceneRuntime runtime(std::move(desc));
+        const SceneRuntime runtime(std::move(desc), make_gi_method);
         const double w1 = wall_seconds(), c1 = cpu_seconds();
         RenderOptions options;
         options.progress = false;

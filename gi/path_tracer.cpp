@@ -4,6 +4,7 @@
 #include "gi/gi_phong.h"
 #include "render/integrator.h"
 #include "render/sky_environment.h"
+#include "render/whitted.h"
 #include "surface/fresnel.h"
 #include "volume/transmittance.h"
 
@@ -114,16 +115,6 @@ std::string PathTracer::summary() const {
     return out.str();
 }
 
-Rgb PathTracer::surface_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
-                                 Pcg32& rng, RenderCounters& counters) const {
-    return trace(scene, ray, hit, true, rng, counters);
-}
-
-Rgb PathTracer::phong_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
-                               Pcg32& rng, RenderCounters& counters) const {
-    return trace(scene, ray, hit, false, rng, counters);
-}
-
 Rgb PathTracer::direct_light(const SceneRuntime& scene, const SurfaceHit& hit,
                              const PhongMaterial& m, const Vec3& ns, const Vec3& wo, Pcg32& rng,
                              RenderCounters& counters) const {
@@ -210,8 +201,9 @@ Rgb PathTracer::lights_hit(const SceneRuntime& scene, const Ray& ray, float t_en
     return radiance;
 }
 
-Rgb PathTracer::trace(const SceneRuntime& scene, const Ray& camera_ray, const SurfaceHit& first,
-                      bool include_emission, Pcg32& rng, RenderCounters& counters) const {
+Rgb PathTracer::surface_radiance(const SceneRuntime& scene, const Ray& camera_ray,
+                                 const SurfaceHit& first, Pcg32& rng,
+                                 RenderCounters& counters) const {
     const SceneDesc& desc = scene.desc();
     const PathSettings& settings = desc.render.path;
     Rgb radiance(0.0f), beta(1.0f);
@@ -223,7 +215,7 @@ Rgb PathTracer::trace(const SceneRuntime& scene, const Ray& camera_ray, const Su
         const Material& material = desc.materials[hit.material];
         const Vec3 wo = -ray.direction;
         const Rgb emitted = emitted_radiance(material, hit, wo);
-        if (!is_black(emitted) && (bounce > 0 || include_emission)) {
+        if (!is_black(emitted)) {
             float weight = 1.0f;
             if (!specular && m_emitters.is_sampled(hit.shape)) {
                 const float cos_l = std::abs(glm::dot(hit.geometric_normal, wo));

@@ -12,8 +12,8 @@
 /// after Phong bounces), so mirrors show them and glass focuses them. Shadow rays test every
 /// light whose `shadows` is not "none" (shadow maps and volumes are a direct-light technique:
 /// the path tracer uses rays for them).
-#include "gi/gi.h"
 #include "gi/gi_emitters.h"
+#include "render/gi_method.h"
 #include "render/scene_runtime.h"
 
 namespace kasumi {
@@ -22,16 +22,11 @@ class PathTracer final : public GiMethod {
   public:
     explicit PathTracer(const SceneRuntime& scene);
 
+    /// One path from `hit` (reached along `ray`): radiance toward -ray.direction, the hit's own
+    /// emission included. Never throws.
     Rgb surface_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
                          Pcg32& rng, RenderCounters& counters) const override;
-    Rgb phong_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit, Pcg32& rng,
-                       RenderCounters& counters) const override;
     std::string summary() const override;
-
-    /// One path from `hit` (reached along `ray`): radiance toward -ray.direction, with the
-    /// hit's own emission when include_emission. Never throws.
-    Rgb trace(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
-              bool include_emission, Pcg32& rng, RenderCounters& counters) const;
 
   private:
     Rgb direct_light(const SceneRuntime& scene, const SurfaceHit& hit, const PhongMaterial& m,

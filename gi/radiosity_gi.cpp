@@ -355,6 +355,11 @@ std::optional<Rgb> RadiosityGi::reflected_radiance(const SurfaceHit& hit, const 
     return glm::max(m_tree->interpolate(m_tree->find_leaf(face, uv), uv), Rgb(0.0f));
 }
 
+Rgb RadiosityGi::surface_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
+                                  Pcg32& rng, RenderCounters& counters) const {
+    return shade_hit(scene, ray, hit, rng, counters, this);
+}
+
 Rgb RadiosityGi::phong_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
                                 Pcg32& rng, RenderCounters& counters) const {
     const Vec3 wo = -ray.direction;

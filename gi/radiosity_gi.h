@@ -18,8 +18,9 @@
 /// Left out of the exchange, and so stated in the plan: light through mirrors and glass (they
 /// only block), specular-to-diffuse transport, Phong spheres (direct light only), the back
 /// sides of quads and open meshes (direct light only), and media (applied along eye rays only).
-#include "gi/gi.h"
 #include "gi/patch_tree.h"
+#include "render/gi_method.h"
+#include "render/whitted.h"
 
 #include <optional>
 
@@ -36,10 +37,16 @@ struct RadiosityStats {
     std::string cache_note;  ///< what happened with render.radiosity.cache
 };
 
-class RadiosityGi final : public GiMethod {
+class RadiosityGi final : public GiMethod, public PhongShading {
   public:
     explicit RadiosityGi(const SceneRuntime& scene);
 
+    /// Whitted's shade_hit with this solution at Phong surfaces (mirrors and glass reflect and
+    /// refract it).
+    Rgb surface_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
+                         Pcg32& rng, RenderCounters& counters) const override;
+    /// The interpolated radiosity plus the lights' Phong highlights; shade_surface where the hit
+    /// is not on the front of a patch.
     Rgb phong_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit, Pcg32& rng,
                        RenderCounters& counters) const override;
     std::string summary() const override;

@@ -1,7 +1,5 @@
 #include "render/integrator.h"
 
-#include "gi/gi.h"
-#include "gi/photon/photon_gi.h"
 #include "lights/light_samples.h"
 #include "render/sky_environment.h"
 #include "render/sky_shafts.h"
@@ -45,8 +43,8 @@ class RenderPathEnvironment final : public PathEnvironment {
             Ray unbounded = ray;
             unbounded.t_max = kInfinity;
             if (const auto hit = m_scene.surfaces()->intersect(unbounded)) {
-                if (m_scene.gi() != nullptr)
-                    return gi_surface_radiance(m_scene, unbounded, *hit, rng, m_counters);
+                if (const GiMethod* gi = m_scene.gi())
+                    return gi->surface_radiance(m_scene, unbounded, *hit, rng, m_counters);
                 return emitted_radiance(m_scene.desc().materials[hit->material], *hit,
                                         -ray.direction) +
                        shade_surface(m_scene, *hit, -ray.direction, rng, m_counters);
@@ -279,8 +277,8 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
     counters.scattering_events += vc.scattering_events;
     counters.bounded_marches += vc.bounded_marches;
     // Photon mapping adds the light scattered more than once from its volume map.
-    if (const auto* photons = dynamic_cast<const PhotonGi*>(scene.gi()))
-        v.radiance += photons->volume_radiance(scene, segment, rng);
+    if (const GiMethod* gi = scene.gi())
+        v.radiance += gi->volume_radiance(scene, segment, rng);
     return v;
 }
 
@@ -296,7 +294,10 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
             t_end = hit->t;
             sample.depth = hit->t * glm::dot(ray.direction, scene.camera().forward());
             sample.albedo = albedo(scene.desc().materials[hit->material]);
-            sample.surface = gi_surface_radiance(scene, ray, *hit, rng, counters);
+            // The one dispatch of the hit: the scene's GI method, or direct Phong + Whitted.
+            const GiMethod* gi = scene.gi();
+            sample.surface = gi != nullptr ? gi->surface_radiance(scene, ray, *hit, rng, counters)
+                                           : shade_hit(scene, ray, *hit, rng, counters);
         }
     }
     if (!sample.hit)

@@ -1,6 +1,6 @@
 #include "render/scene_runtime.h"
 
-#include "gi/gi.h"
+#include "core/error.h"
 #include "scene/gi_plan.h"
 
 #include <chrono>
@@ -35,13 +35,11 @@ float SceneRuntime::staged_visibility(size_t light, const Vec3& p, const Vec3& n
     return 1.0f;
 }
 
-SceneRuntime::SceneRuntime(SceneDesc desc) : SceneRuntime(std::move(desc), nullptr) {}
-
-SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces)
-    : SceneRuntime(std::move(desc), std::move(surfaces), nullptr) {}
+SceneRuntime::SceneRuntime(SceneDesc desc, const GiFactory& make_gi)
+    : SceneRuntime(std::move(desc), nullptr, nullptr, make_gi) {}
 
 SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces,
-                           std::shared_ptr<const SkyLuts> sky_tables)
+                           std::shared_ptr<const SkyLuts> sky_tables, const GiFactory& make_gi)
     : m_desc(std::move(desc)),
       m_plan(make_plan(m_desc)),
       m_camera(m_desc.camera, m_desc.film.width, m_desc.film.height) {
@@ -81,9 +79,12 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
             make_view_frustum(m_camera, m_desc.film.width, m_desc.film.height));
         m_build_times.sky_s = since(start);
     }
-    {
+    if (m_desc.render.gi != GiMode::None) {
+        if (!make_gi)
+            throw_input_error(m_desc.file + ": render.gi = " + gi_mode_name(m_desc.render.gi) +
+                              ": this program was built without global illumination");
         const auto start = Clock::now();
-        m_gi = make_gi_method(*this);
+        m_gi = make_gi(*this);
         if (m_gi)
             m_build_times.gi_s = since(start);
     }

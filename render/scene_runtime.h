@@ -3,6 +3,7 @@
 /// Embree scene only with shapes, the media only with media.
 #include "core/camera.h"
 #include "core/occlusion_query.h"
+#include "render/gi_method.h"
 #include "scene/plan.h"
 #include "scene/scene.h"
 #include "sky/sky_renderer.h"
@@ -14,8 +15,6 @@
 #include <memory>
 
 namespace kasumi {
-
-class GiMethod;
 
 /// Occlusion by the scene's surfaces for the volume and surface stages.
 class SurfaceOcclusion final : public OcclusionQuery {
@@ -41,16 +40,17 @@ struct BuildTimes {
 
 class SceneRuntime {
   public:
-    explicit SceneRuntime(SceneDesc desc);
+    /// Builds every stage the plan calls for, the GI method last by `make_gi` (gi/gi.h's
+    /// make_gi_method; it sees the built surfaces, media and sky). Without `make_gi`, a scene
+    /// whose render.gi is not "none" is an input error naming the scene file.
+    explicit SceneRuntime(SceneDesc desc, const GiFactory& make_gi = nullptr);
     /// As above, but takes `surfaces` as the scene's BVH instead of building one when the plan
-    /// needs it (null: build). The caller guarantees it was built from the same desc.shapes
-    /// (sequence/sequence.h reuses one across the frames of a sequence).
-    SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces);
-    /// As above, and takes `sky_tables` as the sky's sun-independent tables (fast mode; null:
-    /// build). The caller guarantees they were built for the same atmosphere, wavelengths and
-    /// sun angular radius (SkyRenderer::shared_tables() of an earlier frame).
+    /// needs it (null: build), and `sky_tables` as the sky's sun-independent tables (fast mode;
+    /// null: build). The caller guarantees the BVH was built from the same desc.shapes and the
+    /// tables for the same atmosphere, wavelengths and sun angular radius (sequence/sequence.h
+    /// reuses both across the frames of a sequence).
     SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> surfaces,
-                 std::shared_ptr<const SkyLuts> sky_tables);
+                 std::shared_ptr<const SkyLuts> sky_tables, const GiFactory& make_gi);
 
     const SceneDesc& desc() const { return m_desc; }
     const Plan& plan() const { return m_plan; }
@@ -72,7 +72,7 @@ class SceneRuntime {
     const ShadowMapSet* shadow_maps() const { return m_shadow_maps.get(); }
     /// Null unless the plan has shadow volumes.
     const ShadowVolumeSet* shadow_volumes() const { return m_shadow_volumes.get(); }
-    /// The render.gi method and its precomputation (gi/gi.h); null for "none".
+    /// The render.gi method and its precomputation (render/gi_method.h); null for "none".
     const GiMethod* gi() const { return m_gi.get(); }
     /// Time spent building each part in the constructor.
     const BuildTimes& build_times() const { return m_build_times; }

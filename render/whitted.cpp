@@ -1,6 +1,5 @@
 #include "render/whitted.h"
 
-#include "gi/gi.h"
 #include "render/integrator.h"
 #include "render/sky_environment.h"
 #include "surface/emitter_hit.h"
@@ -36,27 +35,28 @@ Rgb shade_gouraud(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& h
 
 /// The secondary ray leaving `hit` along `direction`, traced if the recursion allows it.
 Rgb trace_branch(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& direction,
-                 float branch_weight, Pcg32& rng, RenderCounters& counters, int depth) {
+                 float branch_weight, Pcg32& rng, RenderCounters& counters,
+                 const PhongShading* phong, int depth) {
     const WhittedSettings& settings = scene.desc().render.whitted;
     if (depth >= settings.max_depth || !(branch_weight >= settings.min_weight) ||
         branch_weight <= 0.0f)
         return Rgb(0.0f);
     const Ray ray{offset_ray_origin(hit, direction), direction, 0.0f, kInfinity};
-    return trace_whitted_ray(scene, ray, rng, counters, depth + 1, branch_weight);
+    return trace_whitted_ray(scene, ray, rng, counters, phong, depth + 1, branch_weight);
 }
 
 Rgb shade_mirror(const SceneRuntime& scene, const MirrorMaterial& mirror, const Ray& ray,
-                 const SurfaceHit& hit, Pcg32& rng, RenderCounters& counters, int depth,
-                 float weight) {
+                 const SurfaceHit& hit, Pcg32& rng, RenderCounters& counters,
+                 const PhongShading* phong, int depth, float weight) {
     const Vec3 wo = -ray.direction;
     const Vec3 wr = glm::normalize(reflect(wo, hit.shading_normal));
-    return mirror.kr *
-           trace_branch(scene, hit, wr, weight * max_component(mirror.kr), rng, counters, depth);
+    return mirror.kr * trace_branch(scene, hit, wr, weight * max_component(mirror.kr), rng,
+                                    counters, phong, depth);
 }
 
 Rgb shade_dielectric(const SceneRuntime& scene, const DielectricMaterial& glass, const Ray& ray,
-                     const SurfaceHit& hit, Pcg32& rng, RenderCounters& counters, int depth,
-                     float weight) {
+                     const SurfaceHit& hit, Pcg32& rng, RenderCounters& counters,
+                     const PhongShading* phong, int depth, float weight) {
     const Vec3 wo = -ray.direction;
     // The shape's normal points outside, where the relative index is 1; flip it to wo's side.
     const float cos_o = glm::dot(hit.shading_normal, wo);
@@ -67,15 +67,15 @@ Rgb shade_dielectric(const SceneRuntime& scene, const DielectricMaterial& glass,
     Rgb radiance(0.0f);
     if (reflectance > 0.0f) {
         const Vec3 wr = glm::normalize(reflect(wo, n));
-        radiance +=
-            reflectance * trace_branch(scene, hit, wr, weight * reflectance, rng, counters, depth);
+        radiance += reflectance *
+                    trace_branch(scene, hit, wr, weight * reflectance, rng, counters, phong, depth);
     }
     if (reflectance < 1.0f) {
         if (const std::optional<Vec3> wt = refract(wo, n, eta)) {
             const Rgb transmittance = (1.0f - reflectance) * glass.tint;
             radiance += transmittance / (eta * eta) *
                         trace_branch(scene, hit, *wt, weight * max_component(transmittance), rng,
-                                     counters, depth);
+                                     counters, phong, depth);
         }
     }
     return radiance;
@@ -83,23 +83,32 @@ Rgb shade_dielectric(const SceneRuntime& scene, const DielectricMaterial& glass,
 
 }  // namespace
 
+Rgb emitted_radiance(const Material& material, const SurfaceHit& hit, const Vec3& wo) {
+    if (glm::dot(hit.geometric_normal, wo) <= 0.0f)
+        return Rgb(0.0f);
+    return emission(material);
+}
+
 Rgb shade_hit(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit, Pcg32& rng,
-              RenderCounters& counters, int depth, float weight) {
+              RenderCounters& counters, const PhongShading* phong, int depth, float weight) {
     const Material& material = scene.desc().materials[hit.material];
     const Rgb emitted = emitted_radiance(material, hit, -ray.direction);
     if (const auto* mirror = std::get_if<MirrorMaterial>(&material))
-        return emitted + shade_mirror(scene, *mirror, ray, hit, rng, counters, depth, weight);
+        return emitted +
+               shade_mirror(scene, *mirror, ray, hit, rng, counters, phong, depth, weight);
     if (const auto* glass = std::get_if<DielectricMaterial>(&material))
-        return emitted + shade_dielectric(scene, *glass, ray, hit, rng, counters, depth, weight);
-    if (const GiMethod* gi = scene.gi())
-        return emitted + gi->phong_radiance(scene, ray, hit, rng, counters);
+        return emitted +
+               shade_dielectric(scene, *glass, ray, hit, rng, counters, phong, depth, weight);
+    if (phong != nullptr)
+        return emitted + phong->phong_radiance(scene, ray, hit, rng, counters);
     if (hit.shading == Shading::Gouraud)
         return emitted + shade_gouraud(scene, ray, hit, rng, counters);
     return emitted + shade_surface(scene, hit, -ray.direction, rng, counters);
 }
 
 Rgb trace_whitted_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
-                      RenderCounters& counters, int depth, float weight) {
+                      RenderCounters& counters, const PhongShading* phong, int depth,
+                      float weight) {
     Rgb surface(0.0f);
     float t_end = ray.t_max;
     bool hit_surface = false;
@@ -107,7 +116,7 @@ Rgb trace_whitted_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
         if (const auto hit = surfaces->intersect(ray)) {
             t_end = hit->t;
             hit_surface = true;
-            surface = shade_hit(scene, ray, *hit, rng, counters, depth, weight);
+            surface = shade_hit(scene, ray, *hit, rng, counters, phong, depth, weight);
         }
     }
     // A ray that leaves the scene sees the sky with the sun's disc (or the background).

@@ -3,6 +3,7 @@
 #include "core/color_management.h"
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "gi/gi.h"
 #include "render/renderer.h"
 #include "scene/animation.h"
 #include "sequence/sequence_contact_sheet.h"
@@ -271,7 +272,8 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         const std::string sky_key =
             options.reuse ? sky_tables_key(doc, options.scene_path, desc.sky.get()) : std::string();
         std::shared_ptr<const SkyLuts> sky_tables = scene.cache.sky_tables(sky_key);
-        const SceneRuntime runtime(std::move(desc), std::move(bvh), std::move(sky_tables));
+        const SceneRuntime runtime(std::move(desc), std::move(bvh), std::move(sky_tables),
+                                   make_gi_method);
         if (runtime.surfaces() != nullptr && !bvh_reused) {
             scene.cache.count_bvh_built();
             scene.cache.remember_surfaces(key, runtime.shared_surfaces());

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/exr_io.h"
+#include "gi/gi.h"
 #include "render/probe.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
@@ -216,7 +217,7 @@ SceneDesc load_desc(const std::string& scene_path, const std::vector<StudySettin
 
 std::unique_ptr<SceneRuntime> load_runtime(const std::string& scene_path,
                                            const std::vector<StudySetting>& sets) {
-    return std::make_unique<SceneRuntime>(load_desc(scene_path, sets));
+    return std::make_unique<SceneRuntime>(load_desc(scene_path, sets), make_gi_method);
 }
 
 /// One configuration's measured value (an image, or a probe as a 1x1 image) and its time.
@@ -241,7 +242,7 @@ Measurement measure(const SceneRuntime& runtime, const StudySpec& spec, const st
 Measurement build_and_measure(const SceneDesc& desc, const StudySpec& spec,
                               const std::string& what) {
     const auto start = std::chrono::steady_clock::now();
-    const SceneRuntime runtime(desc);
+    const SceneRuntime runtime(desc, make_gi_method);
     const std::chrono::duration<double> build = std::chrono::steady_clock::now() - start;
     Measurement m = measure(runtime, spec, what);
     m.seconds += build.count();
@@ -486,7 +487,8 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
         descs.push_back(load_desc(spec.scene_path, sets));
         row.spp = descs.back().film.spp;
         if (!build_timed)
-            runtimes.push_back(std::make_unique<SceneRuntime>(std::move(descs.back())));
+            runtimes.push_back(
+                std::make_unique<SceneRuntime>(std::move(descs.back()), make_gi_method));
         largest_spp = std::max(largest_spp, row.spp);
         result.rows.push_back(row);
     }
@@ -508,7 +510,7 @@ StudyResult run_study(const StudySpec& spec, const std::function<void(const std:
             reference = single_pixel(*probe.exact);
             result.reference.description = "exact value given";
         } else {
-            const SceneRuntime runtime(desc_of(0));
+            const SceneRuntime runtime(desc_of(0), make_gi_method);
             reference = single_pixel(beer_lambert(runtime, probe.a, probe.b));
             result.reference.description =
                 "exact Beer-Lambert exp(-tau), tau integrated analytically";

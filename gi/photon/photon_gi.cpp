@@ -11,6 +11,11 @@ PhotonGi::PhotonGi(const SceneRuntime& scene)
     : m_maps(build_photon_maps(scene, scene.desc().render.photons, scene.desc().render.seed,
                                scene.desc().render.threads)) {}
 
+Rgb PhotonGi::surface_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
+                               Pcg32& rng, RenderCounters& counters) const {
+    return shade_hit(scene, ray, hit, rng, counters, this);
+}
+
 Rgb PhotonGi::phong_radiance(const SceneRuntime& scene, const Ray& ray, const SurfaceHit& hit,
                              Pcg32& rng, RenderCounters& counters) const {
     const PhotonRenderContext context{scene, m_maps, scene.desc().render.photons};

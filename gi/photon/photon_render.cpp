@@ -1,10 +1,10 @@
 #include "gi/photon/photon_render.h"
 
 #include "core/sampling.h"
-#include "gi/gi.h"
 #include "gi/photon/photon_estimate.h"
 #include "gi/photon/photon_shadow.h"
 #include "render/integrator.h"
+#include "render/whitted.h"
 #include "surface/fresnel.h"
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"

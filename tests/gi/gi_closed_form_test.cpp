@@ -8,7 +8,7 @@
 // sided normal tail beyond 4σ); seeds are fixed, so a run is reproducible.
 #include "gi_test_scenes.h"
 #include "render/probe.h"
-#include "tests/test_scene.h"
+#include "tests/gi/gi_test_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ TEST_P(GiClosedFormTest, FurnaceBoxHasRadianceLeOverOneMinusRho) {
     const GiCase& c = GetParam();
     for (const double rho : {0.3, 0.7}) {
         const double le = 10.0;
-        const auto runtime = runtime_from_text(furnace_scene(c, le, rho));
+        const auto runtime = gi_runtime_from_text(furnace_scene(c, le, rho));
         const double expected = le / (1.0 - rho);
         // From the centre toward a face centre, an edge and a corner, and from off-centre.
         const Vec3 directions[] = {Vec3(0, 0, -1), Vec3(1, 1, 0), Vec3(-1, -1, 1),
@@ -59,7 +59,7 @@ TEST_P(GiClosedFormTest, FacingSquaresGiveRhoTimesFormFactorTimesLe) {
     const GiCase& c = GetParam();
     const double le = 100.0, rho = 0.8;
     for (const double height : {0.5, 1.0}) {
-        const auto runtime = runtime_from_text(facing_squares_scene(c, le, rho, height));
+        const auto runtime = gi_runtime_from_text(facing_squares_scene(c, le, rho, height));
         const double f = 4.0 * point_to_corner_rectangle(0.5, 0.5, height);
         const double expected = rho * f * le;
         // Look at the receiver's centre from the side, between the two squares.

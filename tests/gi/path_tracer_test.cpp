@@ -4,7 +4,7 @@
 #include "core/sampling.h"
 #include "gi/gi_phong.h"
 #include "render/probe.h"
-#include "tests/test_scene.h"
+#include "tests/gi/gi_test_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -92,7 +92,7 @@ TEST(PathTracerTest, RejectsMaterialsThatCreateEnergy) {
                   "vertices": [[-1, 0, -1], [-1, 0, 1], [1, 0, 1], [1, 0, -1]]}],
       "render": {"gi": "path"}})";
     try {
-        runtime_from_text(scene);
+        gi_runtime_from_text(scene);
         FAIL() << "expected an input error";
     } catch (const Error& e) {
         EXPECT_EQ(e.kind(), ErrorKind::Input);
@@ -104,13 +104,13 @@ TEST(PathTracerTest, PointLightOnALoneLambertianPlaneIsDirectLightOnly) {
     // One plane under a point light: no interreflection, so the path tracer must give the
     // direct light ρ/π · I cos θ / r² exactly as the direct renderer does (render.gi none).
     const auto make = [](const char* gi) {
-        return runtime_from_text(std::string(R"({
+        return gi_runtime_from_text(std::string(R"({
           "materials": {"floor": {"type": "phong", "kd": 0.5}},
           "shapes": [{"type": "quad", "material": "floor",
                       "vertices": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]}],
           "lights": [{"type": "point", "position": [0, 2, 0], "intensity_cd": 100}],
           "render": {"gi": ")") + gi +
-                                 R"("}})");
+                                    R"("}})");
     };
     const auto path = make("path");
     const Vec3 origin(1, 1, 1), target(0.5f, 0, 0.2f);
@@ -126,7 +126,7 @@ TEST(PathTracerTest, MirrorShowsThePolygonLightAndDirectLightAgreesWithMis) {
     // A polygon light seen in a mirror (only bounce rays can reach it: delta BSDF, weight 1),
     // and a diffuse floor lit by the same light through NEE + BSDF sampling (MIS): the floor's
     // centre must get L F ρ with F from Howell B-3; 4 standard errors (false-failure ≈ 6e-5).
-    const auto runtime = runtime_from_text(R"({
+    const auto runtime = gi_runtime_from_text(R"({
       "materials": {"floor": {"type": "phong", "kd": 0.5},
                     "mirror": {"type": "mirror", "kr": 0.9}},
       "shapes": [{"type": "quad", "material": "floor",

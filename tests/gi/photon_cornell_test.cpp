@@ -2,6 +2,7 @@
 // shipped Cornell box: radiance seen from the camera at four points (floor, ceiling, red and
 // green walls), each method with a computed standard error, compared within a stated bias
 // allowance plus k combined standard errors (issue 7; docs/photons.md).
+#include "gi/gi.h"
 #include "gi/photon/photon_gi.h"
 #include "render/probe.h"
 #include "scene/scene_loader.h"
@@ -57,7 +58,7 @@ TEST(PhotonCornell, RadianceAgreesWithThePathTracer) {
     const char* names[] = {"floor", "ceiling", "red wall", "green wall"};
 
     // Reference: the path tracer's mean and standard error over kPathSamples independent paths.
-    const SceneRuntime path(load_scene(file, {Override{"/render/gi", "path"}}));
+    const SceneRuntime path(load_scene(file, {Override{"/render/gi", "path"}}), make_gi_method);
     std::vector<RadianceProbe> reference;
     for (const Vec3& point : points)
         reference.push_back(probe_radiance(path, eye, point - eye, kPathSamples));
@@ -67,10 +68,11 @@ TEST(PhotonCornell, RadianceAgreesWithThePathTracer) {
     // spread gives a standard error that includes the map's noise, not only the gathering's.
     std::vector<std::vector<Rgb>> run_means(points.size());
     for (int run = 0; run < kRuns; ++run) {
-        const SceneRuntime photons(load_scene(
-            file,
-            {Override{"/render/gi", "photons"}, Override{"/render/seed", std::to_string(run + 1)},
-             Override{"/render/photons", photon_settings()}}));
+        const SceneRuntime photons(
+            load_scene(file, {Override{"/render/gi", "photons"},
+                              Override{"/render/seed", std::to_string(run + 1)},
+                              Override{"/render/photons", photon_settings()}}),
+            make_gi_method);
         ASSERT_NE(dynamic_cast<const PhotonGi*>(photons.gi()), nullptr);
         for (size_t i = 0; i < points.size(); ++i)
             run_means[i].push_back(

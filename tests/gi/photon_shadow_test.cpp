@@ -8,7 +8,7 @@
 #include "gi/photon/photon_gi.h"
 #include "gi/photon/photon_tracer.h"
 #include "render/renderer.h"
-#include "tests/test_scene.h"
+#include "tests/gi/gi_test_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -60,7 +60,7 @@ TEST(ShadowPhotons, DepositedAtTheFirstHitAndBehindIt) {
     // occluder (w = 0.5: its solid angle from the light is 4 arctan(w² / (h √(2w² + h²))) with
     // h = 1, i.e. 1.231 sr, 9.80% of the sphere) leave a direct photon on it and a shadow photon
     // on the floor below; no photon is stored twice on one line's first surface.
-    const auto scene = runtime_from_text(occluder_scene(0.5f, R"("gi": "none")"));
+    const auto scene = gi_runtime_from_text(occluder_scene(0.5f, R"("gi": "none")"));
     const uint64_t n = 200000;
     const PhotonMap map = shadow_map(*scene, n);
     size_t occluder_direct = 0, occluder_shadow = 0, floor_shadow = 0;
@@ -92,7 +92,7 @@ TEST(ShadowPhotons, DecisionsAreWrongOnlyWithinTheNeighbourRadiusOfTheShadowEdge
     // from the edge must almost all be decided. Photons deposited at the first hit instead of
     // behind it (or not at all) leave no shadow photon on the floor: every umbra point is then
     // Unknown or wrongly Lit, and the umbra bound below fails.
-    const auto scene = runtime_from_text(occluder_scene(0.5f, R"("gi": "none")"));
+    const auto scene = gi_runtime_from_text(occluder_scene(0.5f, R"("gi": "none")"));
     const PhotonMap map = shadow_map(*scene, 200000);
     const int k = 16;
     const float max_radius = 0.25f;
@@ -150,7 +150,7 @@ TEST(ShadowPhotons, PhotonsOnTheOtherSideOfAThinSurfaceDoNotCount) {
     // Seen from below (normal -y) none arrived on that side, so no decision is made (the light is
     // behind the surface anyway); seen from above, Lit. Counting both sides would call the
     // underside Lit.
-    const auto scene = runtime_from_text(occluder_scene(0.5f, R"("gi": "none")"));
+    const auto scene = gi_runtime_from_text(occluder_scene(0.5f, R"("gi": "none")"));
     const PhotonMap map = shadow_map(*scene, 200000);
     PhotonQueryScratch scratch;
     for (float x : {-0.3f, 0.0f, 0.2f}) {
@@ -181,9 +181,9 @@ TEST(ShadowPhotons, ImageEqualsTheShadowRayImageAndMostRaysAreAvoided) {
     // the shadow edge is 4 m long, and decisions are Unknown only within ~r_16 of it.
     const std::string base = R"("gi": "photons", "photons": {"global_count": 0,
         "caustic_count": 0, "final_gather_samples": 0)";
-    const auto rays = runtime_from_text(occluder_scene(0.25f, base + "}"));
+    const auto rays = gi_runtime_from_text(occluder_scene(0.25f, base + "}"));
     const auto photons =
-        runtime_from_text(occluder_scene(0.25f, base + R"(, "shadow_count": 200000})"));
+        gi_runtime_from_text(occluder_scene(0.25f, base + R"(, "shadow_count": 200000})"));
     const RenderResult a = render_image(*rays, quiet());
     const RenderResult b = render_image(*photons, quiet());
     EXPECT_EQ(a.counters.shadow_rays_avoided, 0u);

@@ -9,8 +9,8 @@
 #include "gi/photon/photon_tracer.h"
 #include "lights/ies_profile.h"
 #include "render/integrator.h"
+#include "tests/gi/gi_test_scene.h"
 #include "tests/sample_mean.h"
-#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -286,7 +286,7 @@ TEST(PhotonDensity, PointLightOnAPlaneConvergesToTheInverseSquareCosineLaw) {
     // A point light of I cd at height h over a plane: E(x) = I h / (h² + x²)^{3/2}. The k-nearest
     // density estimate has bias O(r²) ∝ k/N and relative standard deviation 1/√k; with
     // k ∝ N^{2/3} both shrink and the RMS relative error falls as N^{-1/3} (halves per 8× photons).
-    const auto scene = runtime_from_text(R"({
+    const auto scene = gi_runtime_from_text(R"({
         "materials": {"floor": {"type": "phong", "kd": 0.5}},
         "shapes": [{"type": "quad", "material": "floor",
                     "vertices": [[-30, 0, -30], [-30, 0, 30], [30, 0, 30], [30, 0, -30]]}],
@@ -329,7 +329,7 @@ TEST(PhotonDensity, ClosedDiffuseSphereReachesEOverOneMinusRho) {
     // bounce spreads ρ of the flux uniformly: E_total = E_direct / (1 - ρ), E_direct = I / R².
     // A ball of radius r around a point of the sphere cuts a cap of area exactly π r²
     // (Archimedes), so the box estimate has no curvature bias.
-    const auto scene = runtime_from_text(kSphereFurnace);
+    const auto scene = gi_runtime_from_text(kSphereFurnace);
     const PhotonMap map = trace_map(*scene, PhotonPass::Global, 200000);
     const double expected = 10.0 / (1.0 - 0.5);
     PhotonQueryScratch scratch;
@@ -355,7 +355,7 @@ TEST(PhotonRender, ClosedDiffuseSphereRadianceByFinalGathering) {
     text.insert(text.rfind('}'), R"(, "render": {"gi": "photons", "photons": {
         "global_count": 200000, "caustic_count": 1000, "volume_count": 0, "k": 200,
         "max_radius_m": 0.5, "final_gather_samples": 16}})");
-    const auto scene = runtime_from_text(text);
+    const auto scene = gi_runtime_from_text(text);
     const auto* gi = dynamic_cast<const PhotonGi*>(scene->gi());
     ASSERT_NE(gi, nullptr);
     EXPECT_EQ(gi->maps().caustic.size(), 0u);      // no specular surface: no caustic photons
@@ -399,10 +399,10 @@ TEST(PhotonVolume, HomogeneousMediumMatchesTheVolumeIntegratorsMultipleScatterin
     auto camera = [&](const SceneRuntime& scene) {
         return estimate(40000, [&](int i) { return camera_radiance(scene, ray, 21, i); });
     };
-    const MeanAndError multiple = camera(*runtime_from_text(fog_box("multiple")));
-    const MeanAndError single = camera(*runtime_from_text(fog_box("single")));
+    const MeanAndError multiple = camera(*gi_runtime_from_text(fog_box("multiple")));
+    const MeanAndError single = camera(*gi_runtime_from_text(fog_box("single")));
 
-    const auto scene = runtime_from_text(fog_box("single", R"(, "gi": "photons", "photons": {
+    const auto scene = gi_runtime_from_text(fog_box("single", R"(, "gi": "photons", "photons": {
         "global_count": 0, "caustic_count": 0, "volume_count": 400000, "k": 100,
         "max_radius_m": 0.3})"));
     const auto* gi = dynamic_cast<const PhotonGi*>(scene->gi());
@@ -433,7 +433,7 @@ TEST(PhotonRender, EmissiveFurnaceBoxHasRadianceLeOverOneMinusRho) {
     // from inside) and reflects ρ diffusely: L = L_e + ρ E / π with E = π L everywhere, so
     // L = L_e / (1 - ρ) = 2 for L_e = 1, ρ = 0.5. Photons come from the emissive faces alone;
     // the camera sees emission + final gathering (emission of the gathered walls + global map).
-    const auto scene = runtime_from_text(R"({
+    const auto scene = gi_runtime_from_text(R"({
         "materials": {"wall": {"type": "phong", "kd": 0.5, "emission_cd_m2": 1}},
         "shapes": [
           {"type": "quad", "material": "wall", "vertices": [[-1,-1,1],[1,-1,1],[1,-1,-1],[-1,-1,-1]]},
@@ -497,7 +497,7 @@ TEST(PhotonRender, EmittingSquareOntoFacingSquareGivesRhoFLe) {
         // The global map read at the hit (no gathering): one k-NN estimate with k = 4000 photons
         // of ~2e5 on the receiver, relative σ 1/√4000 = 1.6%; 6% is ~4σ (bias at r ≈ 0.08 m
         // where E is flat: < 0.5%).
-        const auto scene = runtime_from_text(squares_scene(0, 2000000));
+        const auto scene = gi_runtime_from_text(squares_scene(0, 2000000));
         Pcg32 rng(1, 1);
         RenderCounters counters;
         const double l = trace_camera_ray(*scene, ray, rng, counters).radiance.g;
@@ -505,7 +505,7 @@ TEST(PhotonRender, EmittingSquareOntoFacingSquareGivesRhoFLe) {
     }
     {
         // Final gathering sees the emitter's emission (the map adds nothing: the lamp is black).
-        const auto scene = runtime_from_text(squares_scene(64, 10000));
+        const auto scene = gi_runtime_from_text(squares_scene(64, 10000));
         const MeanAndError l =
             estimate(500, [&](int i) { return camera_radiance(*scene, ray, 2, i); });
         EXPECT_NEAR(l.mean, expected, 5.0 * l.stderr_ + 1e-3 * expected);

@@ -5,8 +5,8 @@
 #include "gi/radiosity_solver.h"
 #include "render/probe.h"
 #include "scene/scene_loader.h"
+#include "tests/gi/gi_test_scene.h"
 #include "tests/scratch_dir.h"
-#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -114,7 +114,7 @@ const RadiosityGi& radiosity_of(const SceneRuntime& runtime) {
 }
 
 TEST(RadiosityTest, PatchesAreRefinedAlongTheShadowEdgeOnly) {
-    const auto runtime = runtime_from_text(
+    const auto runtime = gi_runtime_from_text(
         shadow_scene(R"({"patch_size_m": 0.25, "max_subdivision": 2, "refine_threshold": 0.25})"));
     const RadiosityGi& r = radiosity_of(*runtime);
     EXPECT_GT(r.stats().patches, r.stats().coarse_patches);
@@ -146,7 +146,7 @@ TEST(RadiosityTest, DirectLightOnPatchesMatchesTheInverseSquareLaw) {
     // No interreflection (one floor, a black blocker): the floor's radiosity is ρ/π · E with E
     // = I cos θ / r²; Gouraud-interpolated patches reproduce it to the discretisation error
     // (patches 0.0625 m under a light 2 m away: curvature error < 1%).
-    const auto runtime = runtime_from_text(shadow_scene(
+    const auto runtime = gi_runtime_from_text(shadow_scene(
         R"({"patch_size_m": 0.0625, "max_subdivision": 0, "form_factor_samples": 16})"));
     for (const Vec3 target : {Vec3(0.0f, 0.0f, 0.0f), Vec3(-0.5f, 0.0f, -0.3f)}) {
         const Vec3 origin = target + Vec3(0.3f, 0.4f, -0.2f);
@@ -164,10 +164,10 @@ TEST(RadiosityTest, TheCacheIsReusedAndInvalidatedByAChangedLight) {
     const std::string cache = dir.file("solution.bin");
     const std::string settings =
         R"({"patch_size_m": 0.25, "max_subdivision": 1, "cache": ")" + cache + "\"}";
-    const auto first = runtime_from_text(shadow_scene(settings));
+    const auto first = gi_runtime_from_text(shadow_scene(settings));
     EXPECT_FALSE(radiosity_of(*first).stats().from_cache);
     ASSERT_TRUE(std::filesystem::exists(cache));
-    const auto second = runtime_from_text(shadow_scene(settings));
+    const auto second = gi_runtime_from_text(shadow_scene(settings));
     const RadiosityGi& loaded = radiosity_of(*second);
     EXPECT_TRUE(loaded.stats().from_cache);
     EXPECT_EQ(loaded.stats().patches, radiosity_of(*first).stats().patches);
@@ -178,7 +178,7 @@ TEST(RadiosityTest, TheCacheIsReusedAndInvalidatedByAChangedLight) {
     // A brighter light changes the solution: the cache must not be used.
     std::string brighter = shadow_scene(settings);
     brighter.replace(brighter.find("\"intensity_cd\": 100"), 19, "\"intensity_cd\": 200");
-    const auto third = runtime_from_text(brighter);
+    const auto third = gi_runtime_from_text(brighter);
     EXPECT_FALSE(radiosity_of(*third).stats().from_cache);
 }
 
@@ -190,8 +190,8 @@ TEST(RadiosityTest, CornellBoxAgreesWithThePathTracer) {
     // discretisation (patches of 7 cm refined twice, piecewise-constant radiosity per patch,
     // 2 × 2 form-factor points; measured at most 4.4%, radiosity darker: docs/gi.md).
     const std::string file = KASUMI_SOURCE_DIR "/data/scenes/cornell_box.json";
-    const SceneRuntime radiosity(load_scene(file));
-    const SceneRuntime path(load_scene(file, {Override{"/render/gi", "path"}}));
+    const SceneRuntime radiosity(load_scene(file), make_gi_method);
+    const SceneRuntime path(load_scene(file, {Override{"/render/gi", "path"}}), make_gi_method);
     ASSERT_NE(dynamic_cast<const RadiosityGi*>(radiosity.gi()), nullptr);
     const Vec3 eye(0.278f, 0.273f, -0.8f);
     const Vec3 points[] = {{0.278f, 0.3f, 0.5592f}, {0.5f, 0.0f, 0.1f}, {0.1f, 0.5488f, 0.1f},
