@@ -1,11 +1,12 @@
 #include "apps/commands.h"
 
 #include "apps/illuminance_command.h"
-#include "apps/output_writer.h"
+#include "apps/render_report.h"
 #include "apps/scene_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "gi/gi.h"
+#include "render/frame_output.h"
 #include "render/probe.h"
 #include "render/renderer.h"
 #include "scene/animation.h"
@@ -54,7 +55,7 @@ void set_command_exit_code(int code) {
     g_exit_code = code;
 }
 std::string version_string() {
-    return "kasumi 0.1.0";
+    return kKasumiVersion;
 }
 
 void check_output_writable(const std::string& path) {
@@ -201,7 +202,8 @@ void add_render_command(CLI::App& root) {
 
         times.render_s = result.seconds;
         const auto write_start = std::chrono::steady_clock::now();
-        const ExrWriteReport written = write_render_outputs(runtime, result, paths, times);
+        const ExrWriteReport written =
+            write_render_outputs(runtime, result, paths, options->frame, times);
         times.write_s = seconds_since(write_start);
         if (scene_options.verbose) {
             std::fputs(format_stats(runtime, result, times).c_str(), stderr);

@@ -1,9 +1,9 @@
 #include "apps/sequence_command.h"
 
 #include "apps/commands.h"
-#include "apps/output_writer.h"
 #include "apps/scene_options.h"
 #include "core/error.h"
+#include "render/frame_output.h"
 #include "sequence/sequence.h"
 
 #include <algorithm>
@@ -74,7 +74,6 @@ void run(const Options& o) {
     s.progress = o.scene.verbose;
     s.log = o.scene.quiet ? nullptr : stderr;
     s.cancel = &g_cancel;
-    s.metadata = {{"version", version_string()}};
     parse_output_format(o.aovs, o.compression, s.aovs, s.compression);
     if (!o.preview_dir.empty()) {
         check_distinct_outputs(frame_path(o.output, 0),

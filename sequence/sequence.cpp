@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "gi/gi.h"
+#include "render/frame_output.h"
 #include "render/renderer.h"
 #include "scene/animation.h"
 #include "sequence/sequence_contact_sheet.h"
@@ -26,10 +27,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int64_t kMaxFrame = 4294967295;  // the RNG keys frames by 32 bits
 
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 bool parse_int64(const std::string& text, int64_t& out) {
     if (text.empty() || text.size() > 12)
         return false;
@@ -40,17 +37,6 @@ bool parse_int64(const std::string& text, int64_t& out) {
         out = out * 10 + (c - '0');
     }
     return true;
-}
-
-void make_parent_dirs(const std::string& path) {
-    const fs::path parent = fs::path(path).parent_path();
-    if (parent.empty())
-        return;
-    std::error_code ec;
-    fs::create_directories(parent, ec);
-    if (ec)
-        throw_output_error(path + ": cannot create directory " + parent.string() + ": " +
-                           ec.message());
 }
 
 void log_line(std::FILE* log, const char* format, ...) __attribute__((format(printf, 2, 3)));
@@ -76,14 +62,6 @@ Json base_document(const SequenceOptions& options) {
     }
     apply_overrides(doc, options.overrides, options.scene_path);
     return doc;
-}
-
-PreviewSettings preview_settings(const SceneDesc& desc) {
-    PreviewSettings preview;
-    preview.config_path = default_ocio_config_path();
-    preview.view = desc.render.preview.view;
-    preview.exposure_stops = desc.render.preview.exposure_stops;
-    return preview;
 }
 
 /// What stays fixed over a run: the base document, its animation, the element cache.
@@ -264,8 +242,11 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         }
 
         const auto frame_start = Clock::now();
+        StageTimes times;
         const Json doc = scene.document(frame);
         SceneDesc desc = scene.parse(doc, frame);
+        times.load_s = seconds_since(frame_start);
+        const auto build_start = Clock::now();
         const std::string key = options.reuse ? bvh_key(doc) : std::string();
         std::shared_ptr<const SurfaceScene> bvh = scene.cache.surfaces(key);
         const bool bvh_reused = bvh != nullptr;
@@ -283,6 +264,8 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
             scene.cache.count_sky_tables_built();
             scene.cache.remember_sky_tables(sky_key, runtime.sky()->shared_tables());
         }
+        times.build_s = seconds_since(build_start);
+        add_stage_parts(times, runtime);
         const double setup_seconds = seconds_since(frame_start);
 
         RenderOptions render_options;
@@ -299,6 +282,7 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
             break;
         }
         summary.render_seconds += result.seconds;
+        times.render_s = result.seconds;
 
         const auto image_start = Clock::now();
         Image image;
@@ -310,17 +294,13 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
             }
         }
         result.film.to_image(image, options.aovs);
-        image.metadata = options.metadata;
-        image.metadata.insert(
-            image.metadata.end(),
-            {{"scene", options.scene_path},
-             {"frame", std::to_string(frame)},
-             {"spp", std::to_string(runtime.desc().film.spp)},
-             {"seed", std::to_string(runtime.desc().render.seed)},
-             {"units", "scene-linear Rec.709, luminance in cd/m2"},
-             {"stats/nonfinite_samples", std::to_string(result.counters.nonfinite_samples)}});
-        const PreviewSettings preview =
-            preview_path.empty() ? PreviewSettings{} : preview_settings(runtime.desc());
+        image.metadata = frame_metadata(runtime, result, frame, times);
+        FrameFiles files;
+        files.exr = path;
+        files.preview = preview_path;
+        files.compression = options.compression;
+        if (!preview_path.empty())
+            files.preview_settings = preview_settings(runtime.desc());
         // Time spent on this frame here; the writer adds its own.
         const double main_seconds = seconds_since(frame_start);
         const double image_seconds = seconds_since(image_start);
@@ -329,17 +309,12 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         const std::string reuse_line = reuse_text(reuse);
         const ExrPixelType pixel_type = runtime.desc().film.pixel_type;
 
-        dispatch([&, frame, path, preview_path, preview, frame_name, main_seconds, setup_seconds,
-                  image_seconds, render_seconds, nonfinite, reuse_line, pixel_type,
+        dispatch([&, frame, path, files, frame_name, main_seconds, setup_seconds, image_seconds,
+                  render_seconds, nonfinite, reuse_line, pixel_type,
                   image = std::move(image)]() mutable {
             const auto write_start = Clock::now();
-            if (!preview_path.empty()) {
-                make_parent_dirs(preview_path);
-                write_preview_png(image, preview_path, preview);
-            }
-            make_parent_dirs(path);
             const ExrWriteReport half_report =
-                write_exr(image, path, options.compression, pixel_type);
+                write_frame_files(image, image_channel_views(image, pixel_type), files);
             if (want_sheet)
                 thumbnails.emplace(frame, make_thumbnail(image));
             const double write_seconds = image_seconds + seconds_since(write_start);

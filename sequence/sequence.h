@@ -57,7 +57,6 @@ struct SequenceOptions {
     bool progress = false;            ///< tile progress bar of each frame
     std::FILE* log = stderr;          ///< one line per frame and a summary; null: silent
     const std::atomic<bool>* cancel = nullptr;  ///< set asynchronously: stop, drop the frame
-    std::vector<std::pair<std::string, std::string>> metadata;  ///< extra EXR attributes
     uint32_t aovs = kAovAll;  ///< FilmAov bits: the AOV channels written beside R, G, B, A
     ExrCompression compression = ExrCompression::Zip;  ///< lossless, see core/exr_io.h
     /// Frames whose files may wait for the background writer while the next frame renders

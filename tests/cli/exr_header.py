@@ -6,6 +6,7 @@ usage: exr_header.py FILE FIELD...   prints the fields joined by ";" on one line
   channel-types   "name:type" for each channel (uint, half, float), sorted as text
   attr:NAME       the value of attribute NAME ("-" if absent): strings as text, int and float
                   attributes as numbers
+  attr-names:PREFIX  the names of the attributes starting with PREFIX, sorted, comma-separated
 
 Layout (OpenEXR file layout, single-part scan-line file): the magic 76 2f 31 01 and a 4-byte
 version, then attributes as name\\0 type\\0 int32 size, value, ended by a 0 byte; a chlist value
@@ -68,6 +69,9 @@ def main():
             fields.append(",".join(name for name, _ in channels(attributes)))
         elif field == "channel-types":
             fields.append(",".join(sorted("%s:%s" % c for c in channels(attributes))))
+        elif field.startswith("attr-names:"):
+            prefix = field[len("attr-names:"):]
+            fields.append(",".join(sorted(n for n in attributes if n.startswith(prefix))))
         elif field.startswith("attr:"):
             fields.append(attribute(attributes, field[len("attr:"):]))
         else:

@@ -1,0 +1,130 @@
+#include "render/frame_output.h"
+
+#include "core/error.h"
+
+#include <filesystem>
+
+namespace kasumi {
+
+void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
+                         uint32_t& aovs, ExrCompression& compression) {
+    if (!parse_film_aovs(aovs_text, aovs))
+        throw Error(ErrorKind::Usage,
+                    "--aovs expects all, none or a comma-separated list of albedo, depth, "
+                    "surface, volume, transmittance; got \"" +
+                        aovs_text + "\"");
+    if (!parse_exr_compression(compression_text, compression))
+        throw Error(ErrorKind::Usage, "--compression expects zip, piz, rle or none; got \"" +
+                                          compression_text + "\"");
+}
+
+void make_parent_dirs(const std::string& path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (parent.empty())
+        return;
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+    if (ec)
+        throw_output_error(path + ": cannot create directory " + parent.string() + ": " +
+                           ec.message());
+}
+
+PreviewSettings preview_settings(const SceneDesc& desc) {
+    PreviewSettings preview;
+    preview.config_path = default_ocio_config_path();
+    preview.view = desc.render.preview.view;
+    preview.exposure_stops = desc.render.preview.exposure_stops;
+    return preview;
+}
+
+std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRuntime& scene,
+                                                                const RenderResult& result,
+                                                                int64_t frame,
+                                                                const StageTimes& times) {
+    const SceneDesc& desc = scene.desc();
+    const RenderCounters& c = result.counters;
+    std::vector<std::pair<std::string, std::string>> metadata = {
+        {"version", kKasumiVersion},
+        {"scene", desc.file},
+        {"frame", std::to_string(frame)},
+        {"spp", std::to_string(desc.film.spp)},
+        {"seed", std::to_string(desc.render.seed)},
+        {"render_seconds", std::to_string(result.seconds)},
+        {"units", "scene-linear Rec.709, luminance in cd/m2"},
+        {"interrupted", result.interrupted ? "true" : "false"},
+        {"stats/camera_rays", std::to_string(c.camera_rays)},
+        {"stats/surface_shadow_rays", std::to_string(c.surface_shadow_rays)},
+        {"stats/shadow_rays_avoided", std::to_string(c.shadow_rays_avoided)},
+        {"stats/volume_steps", std::to_string(c.volume_steps)},
+        {"stats/volume_shadow_rays", std::to_string(c.volume_shadow_rays)},
+        {"stats/nonfinite_samples", std::to_string(c.nonfinite_samples)},
+        {"stats/density_lookups", std::to_string(c.density_lookups)},
+        {"stats/transmittance_rays", std::to_string(c.transmittance_rays)},
+        {"stats/free_flights", std::to_string(c.free_flights)},
+        {"stats/scattering_events", std::to_string(c.scattering_events)},
+        {"stats/bounded_marches", std::to_string(c.bounded_marches)},
+        {"stats/threads", std::to_string(result.threads)},
+        {"stats/density_lookups_per_s_per_core",
+         std::to_string(
+             render_rates(c, result.seconds, result.threads).density_lookups_per_s_per_core)},
+    };
+    for (auto& kv : stage_metadata(times, scene.plan()))
+        metadata.push_back(std::move(kv));
+    return metadata;
+}
+
+std::vector<ExrChannelView> image_channel_views(const Image& image, ExrPixelType pixel_type) {
+    std::vector<ExrChannelView> views;
+    for (const ImageChannel& channel : image.channels)
+        views.push_back({channel.name, channel.data.data(),
+                         views.size() < 4 ? pixel_type : ExrPixelType::Float});
+    return views;
+}
+
+ExrWriteReport write_frame_files(const Image& header, const std::vector<ExrChannelView>& channels,
+                                 const FrameFiles& files) {
+    make_parent_dirs(files.exr);
+    const ExrWriteReport report =
+        write_exr(header, channels, files.exr, files.compression, files.threads);
+    if (!files.preview.empty()) {
+        make_parent_dirs(files.preview);
+        if (!header.channels.empty()) {
+            write_preview_png(header, files.preview, files.preview_settings);
+        } else {
+            Image rgb(header.width, header.height);
+            const size_t pixels = static_cast<size_t>(header.width) * header.height;
+            for (size_t i = 0; i < 3 && i < channels.size(); ++i) {  // R, G, B
+                const float* from = channels[i].data;
+                rgb.channels.push_back({channels[i].name, std::vector<float>(from, from + pixels)});
+            }
+            write_preview_png(rgb, files.preview, files.preview_settings);
+        }
+    }
+    return report;
+}
+
+ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResult& result,
+                                    const OutputPaths& paths, int64_t frame,
+                                    const StageTimes& times) {
+    const SceneDesc& desc = scene.desc();
+    // The EXR is written straight from the film's planes; `header` carries size and metadata.
+    Image header(result.film.width(), result.film.height());
+    header.metadata = frame_metadata(scene, result, frame, times);
+    std::vector<ExrChannelView> channels;
+    for (const FilmPlane& plane : result.film.planes(paths.aovs)) {
+        // The first four planes are R, G, B, A (Film::planes); AOVs stay float.
+        channels.push_back({plane.name, plane.data,
+                            channels.size() < 4 ? desc.film.pixel_type : ExrPixelType::Float});
+    }
+    FrameFiles files;
+    files.exr = paths.exr;
+    files.preview = paths.preview;
+    files.compression = paths.compression;
+    if (!paths.preview.empty())
+        files.preview_settings = preview_settings(desc);
+    // Compressed with the render's own thread count (--threads 1: on this thread alone).
+    files.threads = result.threads;
+    return write_frame_files(header, channels, files);
+}
+
+}  // namespace kasumi
