@@ -1,0 +1,161 @@
+#include "volume/scattered_paths.h"
+
+#include "volume/scattered_direct.h"
+#include "volume/transmittance.h"
+
+#include <cmath>
+
+namespace kasumi {
+
+namespace {
+
+/// Paths play Russian roulette from this many scattering events on.
+constexpr int kRouletteDepth = 3;
+
+/// The next path vertex after a scattering event at `position`: a direction from the media's
+/// phase mixture (throughput times f / pdf), Russian roulette from kRouletteDepth events on, and
+/// the continued ray (ended at the environment's surface). False: the path ends.
+bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask,
+                    const PointCoefficients& k, const Vec3& wo, int depth,
+                    const PathEnvironment* environment, Pcg32& rng, Rgb& throughput, Ray& ray) {
+    const float u_pick = rng.next_float();
+    const Vec2 u = rng.next_vec2();
+    const MixtureSample next = media.sample_scattering(position, mask, wo, u_pick, u, &k);
+    if (!(next.pdf > 0.0f))
+        return false;
+    throughput *= next.scattering / next.pdf;
+    if (depth >= kRouletteDepth) {
+        const float survive = std::min(1.0f, max_component(throughput));
+        if (!(rng.next_float() < survive))
+            return false;
+        throughput /= survive;
+    }
+    ray = Ray{position, next.wi, 0.0f, kInfinity};
+    if (environment != nullptr)
+        ray.t_max = environment->surface_distance(ray);
+    return true;
+}
+
+float mean(const Rgb& c) {
+    return (c.r + c.g + c.b) * (1.0f / 3.0f);
+}
+
+}  // namespace
+
+Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
+                  const OcclusionQuery* occlusion, const PathEnvironment* environment,
+                  const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
+                  VolumeCounters& counters, Rgb* first_escape) {
+    Rgb radiance(0.0f), throughput(1.0f);
+    Ray ray = camera_segment;
+    for (int depth = 0;;) {
+        const FreeFlight flight = sample_free_flight(media, ray, throughput, rng, counters);
+        radiance += flight.emitted;
+        throughput *= flight.weight;
+        if (depth == 0 && first_escape != nullptr)
+            *first_escape = flight.scattered ? Rgb(0.0f) : flight.weight;
+        if (!flight.scattered) {
+            // The camera segment's own escape is composited by the caller (T * L_surface).
+            if (depth > 0 && environment != nullptr && !is_black(throughput))
+                radiance += throughput * environment->radiance(ray, rng);
+            break;
+        }
+        ++counters.scattering_events;
+        const Vec3 wo = -ray.direction;
+        radiance += throughput * scattered_direct(media, lights, occlusion, flight.position,
+                                                  flight.media_mask, wo, settings, rng, counters,
+                                                  &flight.k);
+        if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth)
+            break;
+        if (!scatter_onward(media, flight.position, flight.media_mask, flight.k, wo, depth,
+                            environment, rng, throughput, ray))
+            break;
+    }
+    return radiance;
+}
+
+Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& lights,
+                          const OcclusionQuery* occlusion, const PathEnvironment* environment,
+                          const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
+                          VolumeCounters& counters, Rgb* first_escape) {
+    thread_local std::vector<TrackedCollision> points;
+    const float k = static_cast<float>(settings.nee_points);
+    const bool emits = media.emits();
+    Rgb radiance(0.0f), throughput(1.0f);
+    Ray ray = camera_segment;
+    for (int depth = 0;;) {
+        const bool last =
+            settings.integrator == VolumeIntegrator::Single || depth + 1 >= settings.max_depth;
+        const TrackedWalk walk =
+            track_collisions(media, ray, last ? nullptr : &throughput, rng, counters, points);
+        if (depth == 0 && first_escape != nullptr)
+            *first_escape = walk.transmittance;
+        float total = 0.0f;
+        for (const TrackedCollision& p : points) {
+            if (emits)
+                radiance += throughput * p.weight * media.emission(p.position, p.media_mask);
+            total += std::max(0.0f, mean(throughput * p.weight * p.k.sigma_s));
+        }
+        const Vec3 wo = -ray.direction;
+        if (total > 0.0f) {
+            // Systematic sampling: picks at u + j (j = 0, 1, ...) in the running sum of k c_i.
+            float next_pick = rng.next_float(), running = 0.0f;
+            for (const TrackedCollision& p : points) {
+                const float share = mean(throughput * p.weight * p.k.sigma_s);
+                if (!(share > 0.0f))
+                    continue;
+                running += k * share;
+                while (next_pick < running) {
+                    next_pick += 1.0f;
+                    ++counters.scattering_events;
+                    radiance += (throughput * p.weight / (k * share)) *
+                                scattered_direct(media, lights, occlusion, p.position, p.media_mask,
+                                                 wo, settings, rng, counters, &p.k);
+                }
+            }
+        }
+        if (last) {
+            // No flight on the last segment: T^ stands for its escape.
+            if (depth > 0 && environment != nullptr && !is_black(throughput * walk.transmittance))
+                radiance += throughput * walk.transmittance * environment->radiance(ray, rng);
+            break;
+        }
+        // The next vertex: the free flight drawn on the walk's collisions, continued past a
+        // roulette stop by an ordinary free flight (memoryless: the same distribution).
+        // A flight that leaves the media adds what it meets there (the camera segment's own
+        // escape is composited by the caller, T * L_surface), as path_radiance does.
+        Vec3 position;
+        uint32_t mask = 0;
+        PointCoefficients k_here;
+        Rgb flight_weight = walk.flight_weight;
+        bool scattered = walk.scatter >= 0;
+        if (scattered) {
+            position = points[static_cast<size_t>(walk.scatter)].position;
+            mask = points[static_cast<size_t>(walk.scatter)].media_mask;
+            k_here = points[static_cast<size_t>(walk.scatter)].k;
+        } else if (walk.flight_open) {
+            Ray rest = ray;
+            rest.t_min = walk.stopped_at;
+            const FreeFlight flight =
+                sample_free_flight(media, rest, throughput * flight_weight, rng, counters);
+            flight_weight *= flight.weight;
+            scattered = flight.scattered;
+            position = flight.position;
+            mask = flight.media_mask;
+            k_here = flight.k;
+        }
+        if (!scattered) {
+            if (depth > 0 && environment != nullptr && !is_black(throughput * flight_weight))
+                radiance += throughput * flight_weight * environment->radiance(ray, rng);
+            break;
+        }
+        ++depth;
+        throughput *= flight_weight;
+        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, rng, throughput,
+                            ray))
+            break;
+    }
+    return radiance;
+}
+
+}  // namespace kasumi
