@@ -305,8 +305,8 @@ TEST(HeightFog, MarchedSingleScatteringMatchesQuadrature) {
 }
 
 // The marched single scattering of a lone height fog samples the column c from
-// e^{-sigma' c}, sigma' = sigma (1 - d_y / s_y) (volume_path.cpp, march_single_height_fog): it
-// is unbiased for any step. At a coarse step (a few nodes per ray) the mean of 4000 estimates
+// e^{-sigma' c}, sigma' = sigma (1 - d_y / s_y) (volume/march_single.cpp, march_single_height_fog):
+// it is unbiased for any step. At a coarse step (a few nodes per ray) the mean of 4000 estimates
 // matches a Simpson quadrature (20000 intervals, long rays: 1e-5 relative) of
 //   int sigma_s,c rho(t) p(mu) E T_cam,c(t) T_sun,c(x(t)) dt
 // within 5 standard errors per channel (false-failure rate ~6e-7 per check, 27 checks): a ray

@@ -1,4 +1,4 @@
-// Marched single scattering through a grid (`march` + `single`, volume/volume_path.cpp) against
+// Marched single scattering through a grid (`march` + `single`, volume/march_single.cpp) against
 // a quadrature of the exact integral, with the light's transmittance from the light cache (the
 // fast path: one grid, directional lights, one exp per node) and from shadow marches (the
 // general path).

@@ -1,8 +1,8 @@
-// Russian roulette on next-event estimation (render.volume.nee_roulette, volume/volume_path.cpp
-// nee_survival): the shadow ray is traced with probability q = min(1, max(0.1, 4 pi p(mu))) and
-// weighted 1/q. Checked against exact answers with q < 1 (q = 0.54 and the floor 0.1): a
-// homogeneous box lit by a sun (closed form), a heterogeneous grid against a fine march, and
-// multiple scattering in a grid against the same paths without the roulette. Statistical
+// Russian roulette on next-event estimation (render.volume.nee_roulette,
+// volume/scattered_direct.cpp nee_survival): the shadow ray is traced with probability q = min(1,
+// max(0.1, 4 pi p(mu))) and weighted 1/q. Checked against exact answers with q < 1 (q = 0.54 and
+// the floor 0.1): a homogeneous box lit by a sun (closed form), a heterogeneous grid against a fine
+// march, and multiple scattering in a grid against the same paths without the roulette. Statistical
 // assertions at 4 standard errors (two-sided Gaussian false-failure rate 6e-5 each, 10
 // assertions of that kind: about 6e-4 for the file; fixed seeds, so a pass is reproducible).
 #include "sun_lit_media.h"

@@ -1,5 +1,5 @@
 // Ratio tracking for in-scattering with next-event estimation at several collisions per path
-// segment (render.volume.nee_points, volume/volume_path.cpp) against exact answers: a
+// segment (render.volume.nee_points, volume/scattered_paths.cpp) against exact answers: a
 // homogeneous box lit by a sun (closed form), a heterogeneous grid against a fine march, and
 // the white furnace for multiple scattering. Statistical assertions at 4 standard errors
 // (two-sided Gaussian false-failure rate 6e-5 each; fixed seeds, so a pass is reproducible).
