@@ -2,6 +2,7 @@
 // tracer show the sky and the sun's disc the camera sees, and the path tracer takes the sky as
 // its environment light (a furnace-like check on a white Lambertian plane).
 #include "render/sky_environment.h"
+#include "gi/gi.h"
 #include "render/integrator.h"
 #include "render/probe.h"
 #include "tests/test_scene.h"
@@ -41,7 +42,7 @@ std::string mirror_scene(const Vec3& n, const char* gi) {
 }
 
 void expect_mirror_shows(const char* gi, const Vec3& normal, const Vec3& reflected) {
-    const auto scene = runtime_from_text(mirror_scene(normal, gi));
+    const auto scene = runtime_from_text(mirror_scene(normal, gi), make_gi_method);
     // What the camera sees straight along the reflected direction (the sky-view table and the
     // disc), and through the mirror: kr times that, behind 2 m of air (relative effect < 1e-4).
     const Rgb direct = probe_radiance(*scene, kCamera, reflected, 1).radiance;
@@ -66,7 +67,7 @@ TEST(SkyEnvironment, MirrorShowsTheSunDisc) {
     const Vec3 n = glm::normalize(Vec3(0, 1, 0) + sun);
     expect_mirror_shows("none", n, sun);
     expect_mirror_shows("path", n, sun);
-    const auto scene = runtime_from_text(mirror_scene(n, "none"));
+    const auto scene = runtime_from_text(mirror_scene(n, "none"), make_gi_method);
     Pcg32 rng(1, 2);
     const Rgb disc = probe_radiance(*scene, kCamera, sun, 1).radiance;
     const Rgb beside =
@@ -93,7 +94,8 @@ TEST(SkyEnvironment, WhiteLambertianPlaneUnderTheSkyReflectsItsIrradiance) {
                         [50000, 0, -50000]]}],
         "atmosphere": {},
         "sun": {"elevation_deg": 30, "azimuth_deg": 180},
-        "render": {"gi": "path", "seed": 3}})");
+        "render": {"gi": "path", "seed": 3}})",
+                                         make_gi_method);
     Rgb e_sun(0.0f);
     for (const Light& light : scene->desc().lights) {
         if (const auto* d = std::get_if<DirectionalLight>(&light.emitter))
