@@ -10,9 +10,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 namespace py = pybind11;
 
@@ -37,10 +39,28 @@ Phase make_phase(const py::dict& description, const std::string& source,
     return p;
 }
 
+/// An output array for `in`: `out` when given (same shape, dtype T, C-contiguous, so repeated
+/// calls skip the allocation and its page faults), else a new one.
+template <typename T>
+py::array_t<T> output_for(const py::array& in, const py::object& out) {
+    if (out.is_none())
+        return py::array_t<T>(std::vector<py::ssize_t>(in.shape(), in.shape() + in.ndim()));
+    if (!py::isinstance<py::array_t<T>>(out))
+        throw py::type_error(std::string("out must be a ") +
+                             (std::is_same_v<T, float> ? "float32" : "float64") +
+                             " array (the dtype of the result)");
+    auto a = out.cast<py::array_t<T>>();
+    if (!(a.flags() & py::array::c_style) || !a.writeable() || a.ndim() != in.ndim() ||
+        !std::equal(in.shape(), in.shape() + in.ndim(), a.shape()))
+        throw py::value_error("out must be a writeable C-contiguous array of mu's shape");
+    return a;
+}
+
 /// out[i] = f(in[i]) over arrays of any shape, with the GIL released for long ones.
 template <typename T, typename F>
-py::array_t<T> map_array(const py::array_t<T, py::array::c_style | py::array::forcecast>& in, F f) {
-    py::array_t<T> out(std::vector<py::ssize_t>(in.shape(), in.shape() + in.ndim()));
+py::array_t<T> map_array(const py::array_t<T, py::array::c_style | py::array::forcecast>& in,
+                         const py::object& out_in, F f) {
+    py::array_t<T> out = output_for<T>(in, out_in);
     const T* src = in.data();
     T* dst = out.mutable_data();
     const py::ssize_t n = in.size();
@@ -57,22 +77,35 @@ py::array_t<T> map_array(const py::array_t<T, py::array::c_style | py::array::fo
     return out;
 }
 
-/// float32 input: the renderer's float path; anything else: the double-precision path.
-py::array evaluate(const Phase& p, const py::object& mu_in) {
-    const py::array mu = py::array::ensure(mu_in);
+py::array as_array(const py::object& mu_in) {
+    py::array mu = py::array::ensure(mu_in);
     if (!mu)
         throw py::type_error("mu must be a number or an array of numbers");
-    if (py::isinstance<py::array_t<float>>(mu))
-        return map_array<float>(mu, [&](float m) { return eval(p.model, m); });
-    return map_array<double>(mu, [&](double m) { return eval_precise(p.model, m); });
+    return mu;
 }
-py::array density(const Phase& p, const py::object& mu_in) {
-    const py::array mu = py::array::ensure(mu_in);
-    if (!mu)
-        throw py::type_error("mu must be a number or an array of numbers");
-    if (py::isinstance<py::array_t<float>>(mu))
-        return map_array<float>(mu, [&](float m) { return pdf(p.model, m); });
-    return map_array<double>(mu, [&](double m) { return pdf_precise(p.model, m); });
+
+/// float32 input: the renderer's float path; anything else: the double-precision path. The
+/// model is resolved once per call (std::visit outside the loop), not per element.
+py::array evaluate(const Phase& p, const py::object& mu_in, const py::object& out) {
+    const py::array mu = as_array(mu_in);
+    return std::visit(
+        [&](const auto& model) -> py::array {
+            if (py::isinstance<py::array_t<float>>(mu))
+                return map_array<float>(mu, out, [&](float m) { return eval(model, m); });
+            return map_array<double>(mu, out, [&](double m) { return eval_precise(model, m); });
+        },
+        p.model);
+}
+/// Every model samples exactly (pdf == eval; validate_phase checks it), as pdf_precise says.
+py::array density(const Phase& p, const py::object& mu_in, const py::object& out) {
+    const py::array mu = as_array(mu_in);
+    return std::visit(
+        [&](const auto& model) -> py::array {
+            if (py::isinstance<py::array_t<float>>(mu))
+                return map_array<float>(mu, out, [&](float m) { return pdf(model, m); });
+            return map_array<double>(mu, out, [&](double m) { return eval_precise(model, m); });
+        },
+        p.model);
 }
 
 /// Samples for u1, u2 in [0, 1) (broadcast to one shape): mu = cos θ of each sampled direction
@@ -191,10 +224,11 @@ void bind_phase(py::module_& m) {
                       "normalised to 1 over the sphere. Make one with kasumi.phase.make().")
         .def_property_readonly(
             "model", [](const Phase& p) { return p.name; }, "The model's name in scene files")
-        .def("eval", &evaluate, py::arg("mu"),
+        .def("eval", &evaluate, py::arg("mu"), py::kw_only(), py::arg("out") = py::none(),
              "p(mu) in 1/sr on an array of any shape. float32 in: the renderer's float path, "
-             "float32 out; anything else: the double-precision path, float64 out.")
-        .def("pdf", &density, py::arg("mu"),
+             "float32 out; anything else: the double-precision path, float64 out. `out`: an "
+             "array of mu's shape and the result's dtype to write into.")
+        .def("pdf", &density, py::arg("mu"), py::kw_only(), py::arg("out") = py::none(),
              "The sampling density per steradian (equal to eval for every model), same dtypes "
              "as eval.")
         .def("sample", &draw, py::arg("u1"), py::arg("u2"),
@@ -255,6 +289,25 @@ void bind_phase(py::module_& m) {
         py::arg("n_tests") = py::none(),
         "Probability that validate's chi-square test rejects `reference` when the sampler "
         "follows `alternative`.");
+    m.def(
+        "_cpp_eval_seconds",
+        [](const Phase& p,
+           const py::array_t<double, py::array::c_style | py::array::forcecast>& mu) {
+            // The yardstick of bench/python_phase_eval.py: the same eval_precise loop over a
+            // C++ vector, no NumPy, no Python; the volatile read keeps the loop.
+            const std::vector<double> in(mu.data(), mu.data() + mu.size());
+            std::vector<double> out(in.size());
+            py::gil_scoped_release release;
+            const auto start = std::chrono::steady_clock::now();
+            for (size_t i = 0; i < in.size(); ++i)
+                out[i] = eval_precise(p.model, in[i]);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            volatile double sink = out.empty() ? 0.0 : out[out.size() / 2];
+            (void)sink;
+            return seconds;
+        },
+        py::arg("phase"), py::arg("mu"), "Benchmark support: seconds of the C++ eval loop.");
     m.def("chi_square_q", &upper_incomplete_gamma_q, py::arg("a"), py::arg("x"),
           "Regularised upper incomplete gamma Q(a, x): the chi-square tail P(χ²_k > s) = "
           "Q(k/2, s/2).");

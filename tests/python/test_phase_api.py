@@ -47,6 +47,18 @@ def test_eval_keeps_any_shape_and_matches_the_formula():
     assert p.eval([0.5, 1.0]).shape == (2,)
 
 
+def test_eval_into_a_given_array():
+    p = phase.make({"model": "rayleigh"})
+    mu = np.linspace(-1, 1, 11)
+    out = np.empty_like(mu)
+    assert p.eval(mu, out=out) is not None
+    np.testing.assert_array_equal(out, p.eval(mu))
+    with pytest.raises(TypeError, match="float64"):
+        p.eval(mu, out=np.empty(11, np.float32))
+    with pytest.raises(ValueError, match="shape"):
+        p.pdf(mu, out=np.empty(12))
+
+
 def test_float32_input_takes_the_renderers_float_path():
     p = phase.make({"model": "hg", "g": 0.9})
     mu32 = np.linspace(-1, 1, 101, dtype=np.float32)
