@@ -74,12 +74,23 @@ submit() {
   step "$name: $out"
 }
 
+# extend_signal_job: once the warned task (the last check) has requeued itself, gives it a
+# 10-minute limit, so one more run finishes the chunk (else every run is warned again 5-35 s in,
+# and on a loaded machine that takes many runs).
+signal_job="" signal_extended=0
+extend_signal_job() {
+  [ -n "$signal_job" ] && [ "$signal_extended" = 0 ] || return 0
+  [ "$(field "$signal_job" Restarts)" -ge 1 ] 2>/dev/null || return 0
+  scontrol update JobId="$signal_job" TimeLimit=10 && signal_extended=1
+}
+
 # wait_jobs SECONDS ID...: waits until no job (or array task) of the ids is pending or running.
 wait_jobs() {
   local limit="$1" start=$SECONDS ids
   shift
   ids="$(IFS=,; echo "$*")"
   while [ -n "$(squeue -h -j "$ids" -o %i 2>/dev/null)" ]; do
+    extend_signal_job
     if [ $((SECONDS - start)) -ge "$limit" ]; then
       fail "jobs $ids still queued after $limit s: $(squeue -j "$ids" 2>&1 | head -n 5)"
       return 1
@@ -207,7 +218,7 @@ if [ -n "$frames_job" ]; then
 fi
 
 # The warning before the time limit (submitted first, above).
-frames_job="$signal_job" sheet_job="$signal_sheet"
+frames_job="$signal_job" sheet_job="$signal_sheet" dir="$work/signal"
 if [ -n "$frames_job" ]; then
   wait_jobs 240 "$frames_job" "$sheet_job"
   log="$work/jobs/kasumi-frames-${frames_job}_0.log"

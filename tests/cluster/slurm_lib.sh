@@ -35,7 +35,7 @@ cluster_install() {
 # foreground (their pids are remembered for cluster_stop), exports SLURM_CONF and waits until
 # the node is idle (60 s at most, then prints the daemons' logs and returns 1).
 cluster_start() {
-  local dir="$1" host cpus mem line
+  local dir="$1" host cpus mem line pid
   export PATH="$PATH:/usr/sbin"
   host="$(hostname -s)"
   mkdir -p "$dir"/{state,spool,munge,log}
@@ -101,7 +101,8 @@ MinJobAge=600
 KillWait=10
 MessageTimeout=20
 NodeName=$host CPUs=$cpus $topo RealMemory=$mem State=UNKNOWN
-PartitionName=debug Nodes=$host Default=YES MaxTime=INFINITE State=UP
+# Up to 4 jobs a core: the test's tasks are short and mostly wait on Slurm, not on the CPU.
+PartitionName=debug Nodes=$host Default=YES MaxTime=INFINITE State=UP OverSubscribe=FORCE:4
 CONF
   export SLURM_CONF="$dir/slurm.conf"
   cluster_dir="$dir"
@@ -128,6 +129,12 @@ CONF
 
   local start=$SECONDS
   while [ $((SECONDS - start)) -lt 60 ]; do
+    for pid in "${cluster_pids[@]}"; do
+      kill -0 "$pid" 2>/dev/null && continue
+      cluster_log "a daemon (pid $pid) exited while starting"
+      cluster_logs
+      return 1
+    done
     if [ "$(sinfo -h -n "$host" -o %t 2>/dev/null)" = "idle" ]; then
       cluster_log "node $host idle after $((SECONDS - start)) s ($cpus CPUs, $mem MB)"
       return 0
