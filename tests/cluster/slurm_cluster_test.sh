@@ -217,6 +217,16 @@ if [ -n "$frames_job" ]; then
   no_partial "$dir"
 fi
 
+# An array past the cluster's MaxArraySize (100 here, 1001 by default) is refused before sbatch,
+# naming the chunk size that fits; nothing is submitted.
+queued="$(squeue -h | wc -l)"
+out="$(SBATCH_ARGS="$base_sbatch" bash "$slurm/submit_sequence.sh" "$scene" 0-239 \
+  "$work/big/s.####.exr" 2>&1)"
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "MaxArraySize 100 .*FRAMES_PER_TASK=3 or more" <<<"$out" ||
+  fail "array 0-239 with MaxArraySize 100: exit $rc: $out"
+[ "$(squeue -h | wc -l)" -eq "$queued" ] || fail "a refused array submitted jobs"
+
 # The warning before the time limit (submitted first, above).
 frames_job="$signal_job" sheet_job="$signal_sheet" dir="$work/signal"
 if [ -n "$frames_job" ]; then

@@ -99,6 +99,8 @@ SlurmdDebug=info
 # Finished jobs stay visible to scontrol for 10 minutes (there is no accounting database).
 MinJobAge=600
 KillWait=10
+# Smaller than the default 1001, so the test sees submit_sequence.sh refuse a too-large array.
+MaxArraySize=100
 MessageTimeout=20
 NodeName=$host CPUs=$cpus $topo RealMemory=$mem State=UNKNOWN
 # Up to 4 jobs a core: the test's tasks are short and mostly wait on Slurm, not on the CPU.
