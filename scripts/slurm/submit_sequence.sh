@@ -35,7 +35,8 @@ fi
 
 # Slurm refuses an array index >= MaxArraySize (default 1001) with only "Invalid job array
 # specification": name the limit and the chunk size that fits (frames past 1000 need chunks).
-top=$([ "$per" -le 1 ] && echo $((first + (count - 1) * step)) || echo $(( (count + per - 1) / per - 1 )))
+top=$(( (count + per - 1) / per - 1 ))                 # the last chunk
+[ "$per" -le 1 ] && top=$((first + (count - 1) * step))  # the last frame
 max_array="$( (scontrol show config 2>/dev/null || true) |
   sed -n 's/^MaxArraySize *= *\([0-9]*\).*/\1/p')"
 if [ -n "$max_array" ] && [ "$top" -ge "$max_array" ]; then
