@@ -22,6 +22,10 @@ started=$SECONDS
 # shellcheck source=tests/cluster/slurm_lib.sh
 source "$here/slurm_lib.sh"
 
+if [ "$(id -u)" -ne 0 ]; then
+  echo "SKIP: the cluster test needs root (it starts munged as user munge and slurmd as root)"
+  exit 77
+fi
 cluster_install
 rc=$?
 [ "$rc" -ne 0 ] && exit "$rc"
@@ -223,8 +227,9 @@ queued="$(squeue -h | wc -l)"
 out="$(SBATCH_ARGS="$base_sbatch" bash "$slurm/submit_sequence.sh" "$scene" 0-239 \
   "$work/big/s.####.exr" 2>&1)"
 rc=$?
-[ "$rc" -eq 2 ] && grep -q "MaxArraySize 100 .*FRAMES_PER_TASK=3 or more" <<<"$out" ||
+if [ "$rc" -ne 2 ] || ! grep -q "MaxArraySize 100 .*FRAMES_PER_TASK=3 or more" <<<"$out"; then
   fail "array 0-239 with MaxArraySize 100: exit $rc: $out"
+fi
 [ "$(squeue -h | wc -l)" -eq "$queued" ] || fail "a refused array submitted jobs"
 
 # The warning before the time limit (submitted first, above).

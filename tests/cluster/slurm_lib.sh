@@ -39,15 +39,12 @@ cluster_start() {
   export PATH="$PATH:/usr/sbin"
   host="$(hostname -s)"
   mkdir -p "$dir"/{state,spool,munge,log}
-  # munged runs as user munge and checks that every directory above its socket is reachable.
+  # munged runs as user munge: the directories above its socket must let it through.
   chmod 755 "$dir"
-  local up="$dir"
-  while up="$(dirname "$up")" && [ "$up" != / ]; do
-    [ -x "$up" ] && [ "$(stat -c %a "$up" | cut -c3)" != 0 ] || {
-      cluster_log "munged (user munge) cannot reach $dir: $up is $(stat -c %a "$up")"
-      return 1
-    }
-  done
+  if ! setpriv --reuid=munge --regid=munge --clear-groups test -x "$dir"; then
+    cluster_log "munged (user munge) cannot reach $dir: a directory above it is closed"
+    return 1
+  fi
   line="$(slurmd -C | head -n 1)"
   cpus="$(sed -n 's/.* CPUs=\([0-9]*\).*/\1/p' <<<"$line")"
   mem="$(sed -n 's/.* RealMemory=\([0-9]*\).*/\1/p' <<<"$line")"
@@ -158,10 +155,20 @@ cluster_logs() {
   done
 }
 
-# cluster_stop: stops the daemons cluster_start started (by pid: TERM, then KILL after 10 s).
+# cluster_stop: cancels the cluster's jobs, then stops the daemons cluster_start started (by
+# pid: TERM, then KILL after 10 s), then any job step process of this cluster left behind.
 cluster_stop() {
-  local pid i alive
+  local pid i left
   [ "${#cluster_pids[@]}" -eq 0 ] && return 0
+  left="$(squeue -h -o %i 2>/dev/null)"
+  if [ -n "$left" ]; then
+    # shellcheck disable=SC2086
+    scancel $left 2>/dev/null
+    for _ in $(seq 1 40); do
+      [ -z "$(squeue -h -o %i 2>/dev/null)" ] && break
+      sleep 0.5
+    done
+  fi
   # Reverse order: slurmd, slurmctld, then munged (they authenticate through it while stopping).
   for ((i = ${#cluster_pids[@]} - 1; i >= 0; i--)); do
     pid="${cluster_pids[$i]}"
@@ -174,11 +181,14 @@ cluster_stop() {
     wait "$pid" 2>/dev/null
   done
   cluster_pids=()
-  # Job steps (slurmstepd) left by a killed slurmd: only those reading our conf.
-  alive="$(pgrep -f "slurmstepd.*" 2>/dev/null || true)"
-  for pid in $alive; do
-    if grep -q "$cluster_dir" "/proc/$pid/environ" 2>/dev/null; then
-      kill -KILL "$pid" 2>/dev/null || true
-    fi
+  # slurmstepd of this cluster (it holds files under $cluster_dir open) outliving slurmd.
+  local fd
+  for pid in $(pgrep -x slurmstepd 2>/dev/null); do
+    for fd in /proc/"$pid"/fd/*; do
+      if [[ "$(readlink "$fd" 2>/dev/null)" == "$cluster_dir"/* ]]; then
+        kill -KILL "$pid" 2>/dev/null || true
+        break
+      fi
+    done
   done
 }
