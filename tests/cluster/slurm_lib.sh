@@ -24,9 +24,15 @@ cluster_install() {
     return 77
   fi
   cluster_log "installing slurmctld slurmd slurm-client munge (apt-get)"
-  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-    slurmctld slurmd slurm-client munge >/dev/null || {
-    cluster_log "apt-get install failed"
+  local pkgs=(slurmctld slurmd slurm-client munge)
+  # A fresh machine may have no package lists yet: update once and retry.
+  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${pkgs[@]}" \
+    >/dev/null 2>&1 || {
+    apt-get update >/dev/null 2>&1
+    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${pkgs[@]}" \
+      >/dev/null
+  } || {
+    cluster_log "apt-get install ${pkgs[*]} failed"
     return 1
   }
 }
@@ -62,7 +68,8 @@ cluster_start() {
   cat >"$dir/slurm.conf" <<CONF
 # Written by tests/cluster/slurm_lib.sh: one node, everything under $dir.
 ClusterName=kasumi-test
-SlurmctldHost=$host
+# Addresses given, so no name lookup of the host is needed.
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=${CLUSTER_PORT:-16817}
 SlurmdPort=$(( ${CLUSTER_PORT:-16817} + 1 ))
 SlurmUser=root
@@ -99,7 +106,7 @@ KillWait=10
 # Smaller than the default 1001, so the test sees submit_sequence.sh refuse a too-large array.
 MaxArraySize=100
 MessageTimeout=20
-NodeName=$host CPUs=$cpus $topo RealMemory=$mem State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus $topo RealMemory=$mem State=UNKNOWN
 # Up to 4 jobs a core: the test's tasks are short and mostly wait on Slurm, not on the CPU.
 PartitionName=debug Nodes=$host Default=YES MaxTime=INFINITE State=UP OverSubscribe=FORCE:4
 CONF
