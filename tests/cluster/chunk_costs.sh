@@ -28,10 +28,12 @@ WRAP
 chmod +x "$work/kasumi-timed"
 count=$(( ${frames#*-} - ${frames%-*} + 1 ))
 echo "frames $frames ($count), kasumi ${flags[*]}; load $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-16s %6s %14s %14s %12s %10s\n' "frames a task" tasks "CPU s a frame" "wall s a frame" "wall total" "peak RSS"
+printf '%-16s %6s %14s %14s %12s %10s\n' "frames a task" tasks "CPU s a frame" \
+  "wall s a frame" "wall total" "peak RSS"
 for per in 1 6 24; do
   mkdir -p "$work/jobs"
-  out="$(cd "$work/jobs" && FRAMES_PER_TASK=$per KASUMI="$work/kasumi-timed" TIME_LOG="$work/time.$per" \
+  out="$(cd "$work/jobs" && FRAMES_PER_TASK=$per KASUMI="$work/kasumi-timed" \
+    TIME_LOG="$work/time.$per" \
     SBATCH_ARGS="--chdir=$work/jobs --cpus-per-task=1 --mem=2G" \
     bash "$src/scripts/slurm/submit_sequence.sh" "$src/data/scenes/sunset_sequence.json" \
     "$frames" "$work/per$per/s.####.exr" -- "${flags[@]}" -q)"
@@ -40,11 +42,14 @@ for per in 1 6 24; do
   while [ -n "$(squeue -h -j "$job,$sheet" -o %i)" ]; do sleep 1; done
   states="$(scontrol -o show job "$job" | grep -o 'JobState=[A-Z]*' | sort -u | tr '\n' ' ')"
   [ "$states" = "JobState=COMPLETED " ] || echo "per $per: $states"
-  first="$(scontrol -o show job "$job" | grep -o 'StartTime=[^ ]*' | cut -d= -f2 | sort | head -n 1)"
-  last="$(scontrol -o show job "$job" | grep -o 'EndTime=[^ ]*' | cut -d= -f2 | sort | tail -n 1)"
+  first="$(scontrol -o show job "$job" | grep -o 'StartTime=[^ ]*' | cut -d= -f2 | sort |
+    head -n 1)"
+  last="$(scontrol -o show job "$job" | grep -o 'EndTime=[^ ]*' | cut -d= -f2 | sort |
+    tail -n 1)"
   wall=$(( $(date -d "$last" +%s) - $(date -d "$first" +%s) ))
   # The contact sheet job (last line of the log) is not a frame task.
   head -n -1 "$work/time.$per" | awk -v n="$count" -v per="$per" -v wall="$wall" '
     { cpu += $2 + $3; tasks++; if ($4 > rss) rss = $4 }
-    END { printf "%-16s %6d %14.3f %14.3f %10d s %7.0f MB\n", per, tasks, cpu / n, wall / n, wall, rss / 1024 }'
+    END { printf "%-16s %6d %14.3f %14.3f %10d s %7.0f MB\n", per, tasks, cpu / n, wall / n,
+          wall, rss / 1024 }'
 done

@@ -153,7 +153,8 @@ for per in 1 6; do
   [ "$(all_states "$frames_job")" = COMPLETED ] ||
     fail "per$per: array states $(all_states "$frames_job")"
   [ "$(all_states "$sheet_job")" = COMPLETED ] ||
-    fail "per$per: contact sheet job $(all_states "$sheet_job"): $(cat "$work"/jobs/kasumi-sheet-"$sheet_job".log)"
+    fail "per$per: contact sheet job $(all_states "$sheet_job"):" \
+      "$(cat "$work/jobs/kasumi-sheet-$sheet_job.log")"
   last_end="$(field "$frames_job" EndTime | sort | tail -n 1)"
   sheet_start="$(field "$sheet_job" StartTime)"
   [[ "$sheet_start" > "$last_end" || "$sheet_start" = "$last_end" ]] ||
@@ -193,7 +194,8 @@ if [ -n "$frames_job" ]; then
     fail "resubmit: states $(all_states "$frames_job") / $(all_states "$sheet_job")"
   log="$work/jobs/kasumi-frames-${frames_job}_0.log"
   grep -q "48 frames: $((48 - done_before)) rendered, $done_before skipped" "$log" ||
-    fail "resubmit: not $((48 - done_before)) rendered and $done_before skipped: $(tail -n 3 "$log")"
+    fail "resubmit: not $((48 - done_before)) rendered and $done_before skipped:" \
+      "$(tail -n 3 "$log")"
   [ "$kept" = "$(mtimes "$dir" | head -n "$done_before")" ] ||
     fail "resubmit: frames finished before scancel were written again"
   compare_frames "$work/local" "$dir" || fail "resubmit: frames differ from the local run"

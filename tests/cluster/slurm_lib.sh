@@ -56,7 +56,8 @@ cluster_start() {
   mem="$(sed -n 's/.* RealMemory=\([0-9]*\).*/\1/p' <<<"$line")"
   # Sockets, cores and threads as slurmd sees them, so slurmd registers without a mismatch.
   local topo
-  topo="$(grep -o 'Boards=[0-9]* SocketsPerBoard=[0-9]* CoresPerSocket=[0-9]* ThreadsPerCore=[0-9]*' <<<"$line")"
+  topo="$(grep -oE '(Boards|SocketsPerBoard|CoresPerSocket|ThreadsPerCore)=[0-9]+' <<<"$line" |
+    tr '\n' ' ')"
 
   # munged wants its socket directory traversable by all (clients connect as any user).
   chown munge:munge "$dir/munge"
