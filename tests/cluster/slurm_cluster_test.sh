@@ -246,7 +246,8 @@ if [ -n "$frames_job" ]; then
     fail "signal: no frame was stopped by the warning: $(tail -n 4 "$log")"
   grep -q "time limit near: .*requeueing" "$log" || fail "signal: the task did not requeue itself"
   [ "$restarts" -ge 1 ] || fail "signal: the task was not requeued"
-  [ "$state" = "COMPLETED COMPLETED" ] || fail "signal: states $state: $(tail -n 4 "$log")"
+  [ "$state" = "COMPLETED COMPLETED" ] || fail "signal: states $state (contact sheet exit" \
+    "$(field "$sheet_job" ExitCode)): $(tail -n 2 "$log") $(cat "$work"/jobs/kasumi-sheet-*.log)"
   [ "$(find "$dir" -name 's.*.exr' | wc -l)" -eq 36 ] || fail "signal: not 36 frames"
   no_partial "$dir"
   # The last two frames were rendered after a requeue: the same bits as a local run.
