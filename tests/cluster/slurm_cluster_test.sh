@@ -122,12 +122,19 @@ no_partial() {
 # Slurm's warning before the time limit stops the frame in flight cleanly; the task requeues
 # itself and, skipping the finished frames, completes the chunk. slurmctld checks time limits
 # every 30 s and warns up to 30 s early: --signal=B:USR1@25 of a 1-minute limit comes 5 to 35 s
-# into the task, so the chunk holds more (36 frames at 640x360, 16 spp, ~1.3 s each on one core).
-# It runs on one CPU while the other checks use the other; its results are checked last.
+# into the task, so the chunk must hold more: 50 s of frames (640x360, 16 spp) on one core, timed
+# here on two local frames (so a fast or a loaded machine gets more or fewer frames). It runs on
+# one CPU while the other checks use the other; its results are checked last.
 dir="$work/signal"
 sig_flags=(--res 640x360 --spp 16 --compression none)
-EXTRA_SBATCH="--time=1 --signal=B:USR1@25" submit signal FRAMES_PER_TASK=36 -- \
-  "$scene" 0-35 "$dir/s.####.exr" -- "${sig_flags[@]}"
+"$kasumi" sequence "$scene" --frames 0-1 -o "$work/signal_local/s.####.exr" "${sig_flags[@]}" \
+  --threads 1 --no-contact-sheet 2>"$work/signal_local.log" || fail "signal: local run failed"
+per_frame="$(sed -n 's/.*; \([0-9.]*\) s per rendered frame.*/\1/p' "$work/signal_local.log")"
+sig_frames="$(awk -v t="${per_frame:-1}" \
+  'BEGIN { n = int(50 / t) + 1; print (n < 12 ? 12 : n > 240 ? 240 : n) }')"
+step "signal: $per_frame s a frame on one core: $sig_frames frames in the warned task"
+EXTRA_SBATCH="--time=1 --signal=B:USR1@25" submit signal FRAMES_PER_TASK="$sig_frames" -- \
+  "$scene" "0-$((sig_frames - 1))" "$dir/s.####.exr" -- "${sig_flags[@]}"
 signal_job="$frames_job" signal_sheet="$sheet_job"
 
 step "local reference: kasumi sequence frames 0-47 ${flags[*]}"
@@ -241,17 +248,20 @@ if [ -n "$frames_job" ]; then
   log="$work/jobs/kasumi-frames-${frames_job}_0.log"
   restarts="$(field "$frames_job" Restarts)"
   state="$(all_states "$frames_job") $(all_states "$sheet_job")"
-  step "signal: $state after $restarts requeue(s); $(grep -c '^sequence: 36 frames' "$log") runs"
+  step "signal: $state after $restarts requeue(s); $(grep -c '^sequence: .* frames:' "$log") runs"
   grep -q "the frame in flight was dropped" "$log" ||
     fail "signal: no frame was stopped by the warning: $(tail -n 4 "$log")"
   grep -q "time limit near: .*requeueing" "$log" || fail "signal: the task did not requeue itself"
   [ "$restarts" -ge 1 ] || fail "signal: the task was not requeued"
   [ "$state" = "COMPLETED COMPLETED" ] || fail "signal: states $state (contact sheet exit" \
     "$(field "$sheet_job" ExitCode)): $(tail -n 2 "$log") $(cat "$work"/jobs/kasumi-sheet-*.log)"
-  [ "$(find "$dir" -name 's.*.exr' | wc -l)" -eq 36 ] || fail "signal: not 36 frames"
+  [ "$(find "$dir" -name 's.*.exr' | wc -l)" -eq "$sig_frames" ] ||
+    fail "signal: not $sig_frames frames"
   no_partial "$dir"
-  # The last two frames were rendered after a requeue: the same bits as a local run.
-  "$kasumi" sequence "$scene" --frames 34-35 -o "$work/signal_local/s.####.exr" \
+  # The last two frames were rendered after a requeue: the same bits as a local run (and the
+  # first two, before the warning).
+  "$kasumi" sequence "$scene" --frames "$((sig_frames - 2))-$((sig_frames - 1))" \
+    -o "$work/signal_local/s.####.exr" \
     "${sig_flags[@]}" -q --no-contact-sheet || fail "signal: local run failed"
   compare_frames "$work/signal_local" "$dir" || fail "signal: frames differ from the local run"
 fi
