@@ -219,11 +219,11 @@ TEST(StudyDocument, ObjectValuesMergeIntoObjects) {
 }
 
 TEST(SvgPlot, OneLinePerSeriesAndFrontRings) {
-    LogLogPlot plot;
+    LinePlot plot;
     plot.title = "a < b";
     plot.series = {{"s1", {{0.1, 1.0}, {1.0, 0.1}}}, {"s2", {{0.2, 2.0}, {0.0, 1.0}}}};
     plot.front = {{0.1, 1.0}, {1.0, 0.1}};
-    const std::string svg = svg_loglog(plot);
+    const std::string svg = svg_line_plot(plot);
     size_t polylines = 0;
     for (size_t p = svg.find("<polyline"); p != std::string::npos; p = svg.find("<polyline", p + 1))
         ++polylines;
