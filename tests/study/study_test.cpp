@@ -237,6 +237,21 @@ TEST(SvgPlot, OneLinePerSeriesAndFrontRings) {
     EXPECT_EQ(circles, 6u);
 }
 
+TEST(SvgPlot, LinearAxisAndDecadesClampedAtTheBottom) {
+    LinePlot plot;  // as `kasumi phase plot` draws p(theta)
+    plot.x = {"angle", AxisScale::Linear, 0.0, 180.0, 30.0};
+    plot.y.label = "p";
+    plot.y.max_decades = 2;
+    plot.series = {{"curve", {{0.0, 100.0}, {90.0, 0.0}, {180.0, 1e-5}}, false}};
+    const std::string svg = svg_line_plot(plot);
+    for (const char* label : {">0<", ">30<", ">90<", ">180<", ">1<", ">10<", ">100<", ">curve<"})
+        EXPECT_NE(svg.find(label), std::string::npos) << label;
+    EXPECT_EQ(svg.find(">0.1<"), std::string::npos);  // two decades below the top only
+    EXPECT_EQ(svg.find("<circle"), std::string::npos);
+    // 0 and 1e-5 sit on the bottom edge (y = 420) at x = 0, 90 and 180 degrees (80 to 540).
+    EXPECT_NE(svg.find("points=\"80.0,40.0 310.0,420.0 540.0,420.0 \""), std::string::npos) << svg;
+}
+
 TEST(StudyRun, ErrorFallsWithSamplesAndFilesAreWritten) {
     // Homogeneous fog lit by a point light, 12x8 pixels. Monte Carlo variance falls as 1/spp
     // and the 512-spp reference adds its own: MSE(1 spp) ~ s^2 (1 + 1/512) against
