@@ -19,7 +19,8 @@
 // instruction counts (valgrind --tool=callgrind --instr-atstart=no), the load-free yardstick.
 //
 // usage: photon_map_bench [--runs N] [--queries N] [--leaf N] [--photons FILE]
-//                         [--write-photons FILE] [--only ours|nanoflann --phase build|query]
+//                         [--write-photons FILE] [--map SUBSTRING]
+//                         [--only ours|nanoflann --phase build|query]
 //                         [SCENE.json ...]   (default: data/scenes/caustic_glass.json and
 //                                             data/scenes/caustic_fog.json)
 #include "gi/photon/photon_map.h"
@@ -293,7 +294,7 @@ std::vector<MapCase> trace_cases(const std::vector<std::string>& scenes) {
 int main(int argc, char** argv) {
     int runs = 9, leaf = 10;
     size_t queries = 100000;
-    std::string photons_in, photons_out, only, phase;
+    std::string photons_in, photons_out, only, phase, map_filter;
     std::vector<std::string> scenes;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -312,15 +313,20 @@ int main(int argc, char** argv) {
             only = value();
         else if (a == "--phase")
             phase = value();
+        else if (a == "--map")
+            map_filter = value();
         else
             scenes.push_back(a);
     }
     if (scenes.empty())
         scenes = {"data/scenes/caustic_glass.json", "data/scenes/caustic_fog.json"};
-    const std::vector<MapCase> cases =
-        photons_in.empty() ? trace_cases(scenes) : read_cases(photons_in);
+    std::vector<MapCase> cases = photons_in.empty() ? trace_cases(scenes) : read_cases(photons_in);
     if (!photons_out.empty())
         write_cases(photons_out, cases);
+    cases.erase(std::remove_if(
+                    cases.begin(), cases.end(),
+                    [&](const MapCase& c) { return c.name.find(map_filter) == std::string::npos; }),
+                cases.end());
 
     if (!only.empty()) {  // one part under callgrind
         for (const MapCase& c : cases) {
