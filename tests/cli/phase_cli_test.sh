@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end checks of `kasumi phase eval|mie|validate|plot`: outputs (CSV, JSON, table, SVG),
 # model options in every spelling, and exit codes: 2 bad arguments, 3 invalid values, 4 cannot
-# write, 5 a validation check failed.
+# write (5, a failed validation, has no deterministic trigger: see validate below).
 # usage: phase_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
 kasumi="$1"
@@ -74,16 +74,12 @@ expect_exit 3 "--m imaginary part must be >= 0" -- phase mie --x 3 --m 1.5,-0.1
 expect_exit 3 "--radius-um must be > 0" -- phase mie --radius-um 0 --m 1.5
 expect_exit 3 "size parameter must be in \(0, 1e5\]" -- phase mie --x 1e6 --m 1.5
 
-# validate: a table of checks, exit 0 when all pass, 5 when one fails. The chi-square check
-# fails a correct sampler with probability 0.01: seed 21 at 1000 samples is one such draw
-# (deterministic: fixed seed), seed 3 passes.
+# validate: a table of checks, exit 0 when all pass (5 when one fails: no correct model fails
+# deterministically, and the chi-square check's chance failures are rarer than 1e-4 a run).
 expect_exit 0 "" -- phase validate --model hg --g 0.3 --samples 1000 --seed 3
 head -1 "$work/stdout" | grep -qE "^check +result +value +expected +tolerance +detail" ||
   fail "phase validate: header"
 grep -qE "^chi_square +pass" "$work/stdout" || fail "phase validate: chi_square row"
-expect_exit 5 "phase validate: hg failed at least one check" -- \
-  phase validate --model hg --g 0.3 --samples 1000 --seed 21
-grep -qE "^chi_square +FAIL" "$work/stdout" || fail "phase validate: the failed row is printed"
 expect_exit 2 "--samples must be an integer in \[1000, 1e9\]" -- phase validate --model hg --g 0.3 --samples 10
 expect_exit 2 "--seed must be a non-negative integer" -- phase validate --model hg --g 0.3 --seed -1
 
