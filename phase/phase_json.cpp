@@ -94,6 +94,29 @@ const std::vector<std::string>& phase_model_names() {
     return names;
 }
 
+const std::vector<std::string>& phase_parameter_names() {
+    static const std::vector<std::string> names = {"g",
+                                                   "rho",
+                                                   "g1",
+                                                   "g2",
+                                                   "w",
+                                                   "alpha",
+                                                   "diameter_um",
+                                                   "file",
+                                                   "m",
+                                                   "x",
+                                                   "radius_um",
+                                                   "wavelength_nm",
+                                                   "medium_index",
+                                                   "distribution",
+                                                   "median_radius_um",
+                                                   "sigma",
+                                                   "mode_radius_um",
+                                                   "gamma",
+                                                   "n_radii"};
+    return names;
+}
+
 PhaseFunction parse_phase(const JsonNode& node) {
     JsonObjectReader reader(node);
     const std::string model = reader.required("model").as_string();

@@ -18,4 +18,8 @@ std::string phase_model_name(const PhaseFunction& p);
 /// Every model name parse_phase accepts.
 const std::vector<std::string>& phase_model_names();
 
+/// Every key parse_phase reads besides `model`, over all models (`kasumi phase` makes each an
+/// option).
+const std::vector<std::string>& phase_parameter_names();
+
 }  // namespace kasumi

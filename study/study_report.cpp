@@ -181,15 +181,15 @@ std::string study_markdown(const StudyResult& result) {
 }
 
 std::string study_svg(const StudyResult& result) {
-    LogLogPlot plot;
+    LinePlot plot;
     plot.title =
         "Study of " + std::filesystem::path(result.scene).filename().string() + " (" +
         (result.probe.empty() ? std::to_string(result.width) + "x" + std::to_string(result.height)
                               : result.probe) +
         ")";
-    plot.x_label = result.timing == StudyTiming::BuildRender ? "build + render time, s (median)"
+    plot.x.label = result.timing == StudyTiming::BuildRender ? "build + render time, s (median)"
                                                              : "render time, s (median)";
-    plot.y_label = "relative MSE against the reference";
+    plot.y.label = "relative MSE against the reference";
     const std::string along = result.axes.empty() ? "" : result.axes.back().key;
     std::map<std::string, size_t> index;
     for (const StudyRow& row : result.rows) {
@@ -213,7 +213,7 @@ std::string study_svg(const StudyResult& result) {
         if (row.pareto)
             plot.front.push_back({row.median_seconds, row.error.rel_mse});
     }
-    return svg_loglog(plot);
+    return svg_line_plot(plot);
 }
 
 void write_study(const StudyResult& result, const std::string& dir) {

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <sstream>
+
 namespace kasumi {
 namespace {
 
@@ -70,6 +73,47 @@ TEST(PhaseJson, RejectsOutOfRangeParametersWithLocation) {
     error_of(R"({"model": "hg", "g": 0.5, "gg": 1})");
     error_of(R"({"model": "tabulated", "file": "/nonexistent.csv"})");
     error_of(R"({"model": "mystery"})");
+}
+
+/// `kasumi phase` offers one option per key of phase_parameter_names(): every key a model reads
+/// (named by the unknown-key error on each model and each Mie path) must be in it.
+TEST(PhaseJson, ParameterNamesCoverEveryModel) {
+    const std::vector<std::string> documents = {
+        R"({"model": "isotropic")",
+        R"({"model": "rayleigh")",
+        R"({"model": "hg", "g": 0.5)",
+        R"({"model": "double-hg", "g1": 0.8, "g2": -0.3, "w": 0.7)",
+        R"({"model": "cornette-shanks", "g": 0.7)",
+        R"({"model": "draine", "g": 0.4, "alpha": 2)",
+        R"({"model": "jendersie-deon", "diameter_um": 12)",
+        R"({"model": "mie", "x": 3, "m": [1.5, 0.01])",
+        R"({"model": "mie", "radius_um": 1, "m": [1.33, 0])",
+        R"({"model": "mie", "distribution": "lognormal", "median_radius_um": 0.3, "sigma": 0.3,
+            "m": [1.33, 0], "n_radii": 8)",
+        R"({"model": "mie", "distribution": "modified-gamma", "mode_radius_um": 0.3, "alpha": 2,
+            "gamma": 1, "m": [1.33, 0], "n_radii": 8)",
+    };
+    std::vector<std::string> known = phase_parameter_names();
+    known.push_back("model");
+    size_t checked = 0;
+    for (const std::string& d : documents) {
+        const std::string message = error_of(d + R"(, "unknown_key_zz": 1})");
+        const std::string marker = "expected one of: ";
+        const size_t at = message.find(marker);
+        ASSERT_NE(at, std::string::npos) << message;
+        std::string list = message.substr(at + marker.size());
+        list = list.substr(0, list.find(')'));
+        std::stringstream keys(list);
+        std::string key;
+        while (std::getline(keys, key, ',')) {
+            key.erase(0, key.find_first_not_of(' '));
+            EXPECT_NE(std::find(known.begin(), known.end(), key), known.end())
+                << key << " (read for " << d << ") is missing from phase_parameter_names()";
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, documents.size());
+    EXPECT_NE(std::find(known.begin(), known.end(), "file"), known.end());  // tabulated
 }
 
 }  // namespace

@@ -219,11 +219,11 @@ TEST(StudyDocument, ObjectValuesMergeIntoObjects) {
 }
 
 TEST(SvgPlot, OneLinePerSeriesAndFrontRings) {
-    LogLogPlot plot;
+    LinePlot plot;
     plot.title = "a < b";
     plot.series = {{"s1", {{0.1, 1.0}, {1.0, 0.1}}}, {"s2", {{0.2, 2.0}, {0.0, 1.0}}}};
     plot.front = {{0.1, 1.0}, {1.0, 0.1}};
-    const std::string svg = svg_loglog(plot);
+    const std::string svg = svg_line_plot(plot);
     size_t polylines = 0;
     for (size_t p = svg.find("<polyline"); p != std::string::npos; p = svg.find("<polyline", p + 1))
         ++polylines;
@@ -235,6 +235,21 @@ TEST(SvgPlot, OneLinePerSeriesAndFrontRings) {
     for (size_t p = svg.find("<circle"); p != std::string::npos; p = svg.find("<circle", p + 1))
         ++circles;
     EXPECT_EQ(circles, 6u);
+}
+
+TEST(SvgPlot, LinearAxisAndDecadesClampedAtTheBottom) {
+    LinePlot plot;  // as `kasumi phase plot` draws p(theta)
+    plot.x = {"angle", AxisScale::Linear, 0.0, 180.0, 30.0};
+    plot.y.label = "p";
+    plot.y.max_decades = 2;
+    plot.series = {{"curve", {{0.0, 100.0}, {90.0, 0.0}, {180.0, 1e-5}}, false}};
+    const std::string svg = svg_line_plot(plot);
+    for (const char* label : {">0<", ">30<", ">90<", ">180<", ">1<", ">10<", ">100<", ">curve<"})
+        EXPECT_NE(svg.find(label), std::string::npos) << label;
+    EXPECT_EQ(svg.find(">0.1<"), std::string::npos);  // two decades below the top only
+    EXPECT_EQ(svg.find("<circle"), std::string::npos);
+    // 0 and 1e-5 sit on the bottom edge (y = 420) at x = 0, 90 and 180 degrees (80 to 540).
+    EXPECT_NE(svg.find("points=\"80.0,40.0 310.0,420.0 540.0,420.0 \""), std::string::npos) << svg;
 }
 
 TEST(StudyRun, ErrorFallsWithSamplesAndFilesAreWritten) {
