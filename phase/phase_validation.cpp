@@ -133,10 +133,19 @@ ChiSquareResult chi_square_test(const PhaseFunction& p, const Vec3& wo,
         table << edges[static_cast<size_t>(ci)] << ',' << edges[static_cast<size_t>(ci) + 1] << ','
               << obs_row << ',' << mass * n_phi * options.samples << '\n';
     }
+    ChiSquareResult result =
+        chi_square_statistic(observed, expected, options.significance, options.n_tests);
+    result.table = table.str();
+    return result;
+}
+
+ChiSquareResult chi_square_statistic(const std::vector<double>& observed,
+                                     const std::vector<double>& expected, double significance,
+                                     int n_tests) {
     ChiSquareResult result;
     double pooled_obs = 0.0, pooled_exp = 0.0;
-    for (int c = 0; c < n_cells; ++c) {
-        const double e = expected[static_cast<size_t>(c)], o = observed[static_cast<size_t>(c)];
+    for (size_t c = 0; c < observed.size(); ++c) {
+        const double e = expected[c], o = observed[c];
         if (e < 5.0) {
             pooled_obs += o;
             pooled_exp += e;
@@ -157,10 +166,8 @@ ChiSquareResult chi_square_test(const PhaseFunction& p, const Vec3& wo,
     result.dof = std::max(1, result.cells - 1);
     result.p_value = upper_incomplete_gamma_q(0.5 * result.dof, 0.5 * result.statistic);
     // Šidák: n independent tests each at 1 - (1 - α)^{1/n} fail together with probability α.
-    result.threshold =
-        1.0 - std::pow(1.0 - options.significance, 1.0 / std::max(1, options.n_tests));
+    result.threshold = 1.0 - std::pow(1.0 - significance, 1.0 / std::max(1, n_tests));
     result.passed = result.p_value > result.threshold;
-    result.table = table.str();
     return result;
 }
 

@@ -51,6 +51,15 @@ struct ChiSquareResult {
 ChiSquareResult chi_square_test(const PhaseFunction& p, const Vec3& wo,
                                 const ValidationOptions& options);
 
+/// The χ² statistic of binned samples against expected counts (the same cell order), with
+/// cells expecting < 5 pooled into one (failing outright when that pool is overfull), its
+/// p-value with cells − 1 degrees of freedom, and the Šidák-corrected threshold for n_tests
+/// tests of overall false-failure rate `significance`. Shared by every sampler's chi-square
+/// test (phase functions here, the Phong BRDF and the lights in their test suites).
+ChiSquareResult chi_square_statistic(const std::vector<double>& observed,
+                                     const std::vector<double>& expected, double significance,
+                                     int n_tests);
+
 /// Runs every check.
 std::vector<PhaseCheck> validate_phase(const PhaseFunction& p, const ValidationOptions& options);
 
