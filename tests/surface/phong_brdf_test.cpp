@@ -226,8 +226,10 @@ TEST_P(PhongChiSquare, SamplerMatchesPdf) {
             expected[i * n_phi + j] = samples * mass * (dphi / sub);
         }
     }
-    const ChiSquareResult r =
-        chi_square_statistic(observed, expected, 0.01, static_cast<int>(chi_cases().size()));
+    ValidationOptions run;
+    run.significance = 0.01;
+    run.n_tests = static_cast<int>(chi_cases().size());
+    const ChiSquareResult r = chi_square_statistic(observed, expected, per_check_alpha(run));
     std::ostringstream worst;
     for (size_t k = 0; k < observed.size(); ++k)
         if (expected[k] >= 5.0 &&
