@@ -1,11 +1,12 @@
 #include "gi/path_tracer.h"
 
 #include "core/error.h"
-#include "gi/gi_phong.h"
+#include "lights/light_hit.h"
 #include "render/integrator.h"
 #include "render/sky_environment.h"
 #include "render/whitted.h"
 #include "surface/fresnel.h"
+#include "surface/phong_brdf.h"
 #include "volume/transmittance.h"
 
 #include <sstream>
@@ -29,59 +30,6 @@ Rgb media_transmittance(const SceneRuntime& scene, const Vec3& origin, const Vec
     const VolumeSettings& volume = scene.desc().render.volume;
     return estimate_transmittance(scene.media(), Ray{origin, direction, 0.0f, distance},
                                   volume.estimator, march_step_m(scene.media(), volume), rng, vc);
-}
-
-/// The solid-angle density (per sr) with which sample_incident picks direction wi toward an
-/// extended light that can be hit (polygon: uniform in area; sphere: uniform in the cone), or 0
-/// for lights a ray cannot hit (delta and line lights: no MIS).
-float light_pdf_solid_angle(const Light& light, const Vec3& p, const Vec3& wi, float distance) {
-    if (const auto* polygon = std::get_if<PolygonLight>(&light.emitter)) {
-        const float cos_l = std::abs(glm::dot(polygon->normal, wi));
-        return cos_l > 0.0f ? distance * distance / (polygon->area * cos_l) : 0.0f;
-    }
-    if (const auto* sphere = std::get_if<SphereLight>(&light.emitter)) {
-        const float d2 = glm::dot(sphere->center - p, sphere->center - p);
-        const float r2 = sphere->radius * sphere->radius;
-        if (d2 <= r2)
-            return 0.0f;
-        const float cos_sigma = std::sqrt(1.0f - r2 / d2);
-        return 1.0f / (kTwoPi * (1.0f - cos_sigma));
-    }
-    return 0.0f;
-}
-
-/// Distance along the ray to the front of a polygon light (or either side if two-sided), or
-/// kInfinity.
-float hit_polygon(const PolygonLight& light, const Ray& ray) {
-    const float denom = glm::dot(light.normal, ray.direction);
-    if (denom == 0.0f || (denom > 0.0f && !light.two_sided))
-        return kInfinity;
-    const float t = glm::dot(light.normal, light.vertices[0] - ray.origin) / denom;
-    if (!(t > 0.0f))
-        return kInfinity;
-    const Vec3 x = ray.origin + t * ray.direction;
-    const size_t n = light.vertices.size();
-    for (size_t i = 0; i < n; ++i) {
-        const Vec3& a = light.vertices[i];
-        const Vec3& b = light.vertices[(i + 1) % n];
-        if (glm::dot(glm::cross(b - a, x - a), light.normal) < 0.0f)
-            return kInfinity;
-    }
-    return t;
-}
-
-/// Distance along the ray to a sphere light seen from outside, or kInfinity.
-float hit_sphere(const SphereLight& light, const Ray& ray) {
-    const Vec3 oc = ray.origin - light.center;
-    const float c = glm::dot(oc, oc) - light.radius * light.radius;
-    if (c <= 0.0f)
-        return kInfinity;
-    const float b = glm::dot(oc, ray.direction);
-    const float disc = b * b - c;
-    if (disc < 0.0f)
-        return kInfinity;
-    const float t = -b - std::sqrt(disc);
-    return t > 0.0f ? t : kInfinity;
 }
 
 }  // namespace
@@ -129,7 +77,7 @@ Rgb PathTracer::direct_light(const SceneRuntime& scene, const SurfaceHit& hit,
         const float cos_theta = glm::dot(ns, in.wi);
         if (cos_theta <= 0.0f || glm::dot(ng, in.wi) <= 0.0f)
             continue;
-        const Rgb f = phong_eval(m, ns, wo, in.wi);
+        const Rgb f = eval(m, ns, wo, in.wi);
         if (is_black(f))
             continue;
         const bool to_infinity = in.distance >= kInfinity;
@@ -144,9 +92,9 @@ Rgb PathTracer::direct_light(const SceneRuntime& scene, const SurfaceHit& hit,
         }
         const Rgb t_media =
             media_transmittance(scene, origin, in.wi, to_infinity ? kInfinity : in.distance, rng);
-        const float pdf_light = light_pdf_solid_angle(light, hit.position, in.wi, in.distance);
+        const float pdf_light = sample_pdf(light, hit.position, in.wi);
         const float weight =
-            pdf_light > 0.0f ? power_heuristic(pdf_light, phong_pdf(m, ns, wo, in.wi)) : 1.0f;
+            pdf_light > 0.0f ? power_heuristic(pdf_light, pdf(m, ns, wo, in.wi)) : 1.0f;
         radiance += f * in.irradiance * (cos_theta * weight) * t_media;
     }
     if (!m_emitters.empty()) {
@@ -159,14 +107,14 @@ Rgb PathTracer::direct_light(const SceneRuntime& scene, const SurfaceHit& hit,
             const float cos_l = -glm::dot(s->normal, wi);
             const float cos_theta = glm::dot(ns, wi);
             if (distance > 0.0f && cos_l > 0.0f && cos_theta > 0.0f && glm::dot(ng, wi) > 0.0f) {
-                const Rgb f = phong_eval(m, ns, wo, wi);
+                const Rgb f = eval(m, ns, wo, wi);
                 const Vec3 origin = offset_ray_origin(hit, wi);
                 ++counters.surface_shadow_rays;
                 // Stop short of the emitter so the sampled point does not block itself.
                 const float t_max = glm::length(s->position - origin) * (1.0f - 1e-4f);
                 if (!is_black(f) && !scene.surfaces()->occluded(Ray{origin, wi, 0.0f, t_max})) {
                     const float pdf_solid = s->pdf_area * distance * distance / cos_l;
-                    const float weight = power_heuristic(pdf_solid, phong_pdf(m, ns, wo, wi));
+                    const float weight = power_heuristic(pdf_solid, pdf(m, ns, wo, wi));
                     radiance += f * s->radiance * (cos_theta * weight / pdf_solid) *
                                 media_transmittance(scene, origin, wi, t_max, rng);
                 }
@@ -180,23 +128,15 @@ Rgb PathTracer::lights_hit(const SceneRuntime& scene, const Ray& ray, float t_en
                            float bsdf_pdf, Pcg32& rng) const {
     Rgb radiance(0.0f);
     for (const Light& light : scene.desc().lights) {
-        float t = kInfinity;
-        Rgb luminance_seen(0.0f);
-        if (const auto* polygon = std::get_if<PolygonLight>(&light.emitter)) {
-            t = hit_polygon(*polygon, ray);
-            luminance_seen = polygon->luminance;
-        } else if (const auto* sphere = std::get_if<SphereLight>(&light.emitter)) {
-            t = hit_sphere(*sphere, ray);
-            luminance_seen = sphere->luminance;
-        }
-        if (!(t < t_end))
+        const auto seen = intersect(light, ray);
+        if (!seen || !(seen->t < t_end) || is_black(seen->radiance))
             continue;
+        const float t = seen->t;
         const float weight =
             specular ? 1.0f
-                     : power_heuristic(bsdf_pdf,
-                                       light_pdf_solid_angle(light, ray.origin, ray.direction, t));
+                     : power_heuristic(bsdf_pdf, sample_pdf(light, ray.origin, ray.direction));
         radiance +=
-            luminance_seen * weight * media_transmittance(scene, ray.origin, ray.direction, t, rng);
+            seen->radiance * weight * media_transmittance(scene, ray.origin, ray.direction, t, rng);
     }
     return radiance;
 }
@@ -259,7 +199,7 @@ Rgb PathTracer::surface_radiance(const SceneRuntime& scene, const Ray& camera_ra
                 break;
             radiance += beta * direct_light(scene, hit, phong, ns, wo, rng, counters);
             const float u_lobe = rng.next_float();
-            const auto s = phong_sample(phong, ns, wo, u_lobe, rng.next_vec2());
+            const auto s = sample(phong, ns, wo, u_lobe, rng.next_vec2());
             if (!s)
                 break;
             const Vec3 ng = glm::dot(hit.geometric_normal, wo) < 0.0f ? -hit.geometric_normal

@@ -1,6 +1,6 @@
 #pragma once
 /// The reference path tracer (render.gi = "path"): unbiased Monte Carlo estimates of the
-/// rendering equation over energy-conserving Phong (gi/gi_phong.h), mirrors and dielectrics
+/// rendering equation over energy-conserving Phong (surface/phong_brdf.h), mirrors and dielectrics
 /// (exact Fresnel, reflection or refraction chosen with probability F), with next-event
 /// estimation at Phong vertices to every light and to the emissive surfaces, combined with BSDF
 /// sampling by multiple importance sampling (power heuristic, Veach & Guibas 1995) for polygon

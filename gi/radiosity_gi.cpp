@@ -1,11 +1,11 @@
 #include "gi/radiosity_gi.h"
 
 #include "core/atomic_file.h"
-#include "gi/gi_phong.h"
 #include "gi/path_tracer.h"
 #include "gi/radiosity_solver.h"
 #include "render/integrator.h"
 #include "render/scene_runtime.h"
+#include "surface/phong_brdf.h"
 
 #include <tbb/parallel_for.h>
 
@@ -385,7 +385,7 @@ Rgb RadiosityGi::phong_radiance(const SceneRuntime& scene, const Ray& ray, const
         const float cos_theta = glm::dot(ns, in.wi);
         if (is_black(in.irradiance) || cos_theta <= 0.0f || glm::dot(ng, in.wi) <= 0.0f)
             continue;
-        const Rgb f = phong_eval(specular, ns, wo, in.wi);
+        const Rgb f = eval(specular, ns, wo, in.wi);
         if (is_black(f))
             continue;
         if (scene.occlusion() != nullptr && light.shadows != ShadowMode::None) {

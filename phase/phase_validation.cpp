@@ -210,25 +210,38 @@ ChiSquareResult chi_square_test(const PhaseFunction& reference, const PhaseSampl
     const Cells cells = make_cells(row_masses(reference, edges), options.samples);
     std::ostringstream table;
     table << "theta_lo,theta_hi,observed,expected\n";
-    ChiSquareResult result;
-    double pooled_obs = 0.0, pooled_exp = 0.0;
+    // Every φ cell of a row expects the same count, so a row is pooled (make_cells) exactly
+    // when its cells expect < 5: chi_square_statistic's rule.
+    std::vector<double> expected(static_cast<size_t>(n_cells));
     for (int ti = 0; ti < n_theta; ++ti) {
         const double e = cells.mass[size_t(ti)] * options.samples / kPhiSectors;
         double obs_row = 0.0;
         for (int pi = 0; pi < kPhiSectors; ++pi) {
-            const double o = observed[static_cast<size_t>(ti * kPhiSectors + pi)];
-            obs_row += o;
-            if (cells.pooled[size_t(ti)]) {
-                pooled_obs += o;
-                pooled_exp += e;
-                ++result.pooled_cells;
-                continue;
-            }
-            result.statistic += (o - e) * (o - e) / e;
-            ++result.cells;
+            obs_row += observed[static_cast<size_t>(ti * kPhiSectors + pi)];
+            expected[static_cast<size_t>(ti * kPhiSectors + pi)] = e;
         }
         table << edges[size_t(ti)] << ',' << edges[size_t(ti) + 1] << ',' << obs_row << ','
               << e * kPhiSectors << '\n';
+    }
+    ChiSquareResult result = chi_square_statistic(observed, expected, per_check_alpha(options));
+    result.table = table.str();
+    return result;
+}
+
+ChiSquareResult chi_square_statistic(const std::vector<double>& observed,
+                                     const std::vector<double>& expected, double alpha) {
+    ChiSquareResult result;
+    double pooled_obs = 0.0, pooled_exp = 0.0;
+    for (size_t c = 0; c < observed.size(); ++c) {
+        const double e = expected[c], o = observed[c];
+        if (e < 5.0) {
+            pooled_obs += o;
+            pooled_exp += e;
+            ++result.pooled_cells;
+            continue;
+        }
+        result.statistic += (o - e) * (o - e) / e;
+        ++result.cells;
     }
     if (pooled_exp >= 5.0) {
         result.statistic += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
@@ -240,9 +253,8 @@ ChiSquareResult chi_square_test(const PhaseFunction& reference, const PhaseSampl
     }
     result.dof = std::max(1, result.cells - 1);
     result.p_value = upper_incomplete_gamma_q(0.5 * result.dof, 0.5 * result.statistic);
-    result.threshold = per_check_alpha(options);
+    result.threshold = alpha;
     result.passed = result.p_value > result.threshold;
-    result.table = table.str();
     return result;
 }
 

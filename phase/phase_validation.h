@@ -93,6 +93,14 @@ ChiSquareResult chi_square_test(const PhaseFunction& reference, const PhaseSampl
 double chi_square_power(const PhaseFunction& reference, const PhaseFunction& alternative,
                         const ValidationOptions& options);
 
+/// The χ² statistic of binned samples against expected counts (the same cell order), with
+/// cells expecting < 5 pooled into one (failing outright when that pool is overfull), and its
+/// p-value with cells − 1 degrees of freedom; passed when the p-value exceeds alpha (e.g.
+/// per_check_alpha). Shared by every sampler's chi-square test (phase functions here, the
+/// Phong BRDF in its test suite).
+ChiSquareResult chi_square_statistic(const std::vector<double>& observed,
+                                     const std::vector<double>& expected, double alpha);
+
 /// Runs every check.
 std::vector<PhaseCheck> validate_phase(const PhaseFunction& p, const ValidationOptions& options);
 

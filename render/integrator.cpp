@@ -5,6 +5,7 @@
 #include "render/sky_shafts.h"
 #include "render/whitted.h"
 #include "surface/emitter_hit.h"
+#include "surface/phong_brdf.h"
 #include "surface/sphere_light_occluders.h"
 
 #include "volume/transmittance.h"
@@ -13,18 +14,6 @@
 namespace kasumi {
 
 namespace {
-
-/// Normalised modified Phong BRDF (Lafortune & Willems 1994), per steradian.
-Rgb phong_brdf(const PhongMaterial& m, const Vec3& n, const Vec3& wo, const Vec3& wi) {
-    Rgb f = m.kd * kInvPi;
-    if (max_component(m.ks) > 0.0f) {
-        const Vec3 mirror = 2.0f * glm::dot(n, wi) * n - wi;
-        const float cos_alpha = std::max(0.0f, glm::dot(mirror, wo));
-        f += specular_reflectance(m, glm::dot(n, wi)) *
-             ((m.n + 2.0f) * kInv2Pi * std::pow(cos_alpha, m.n));
-    }
-    return f;
-}
 
 /// What scattered paths meet beyond the media: the directly lit surfaces, or the sky (without
 /// the sun's disc: next-event estimation takes the sun) or the constant background.
@@ -118,8 +107,8 @@ class LightSampleSums {
             if (!(visibility > 0.0f))
                 return LightSampleOutcome::Blocked;
         }
-        reflected += phong_brdf(m_material, m_ns, m_wo, in.wi) * in.irradiance * cos_theta *
-                     t_media * visibility;
+        reflected +=
+            eval(m_material, m_ns, m_wo, in.wi) * in.irradiance * cos_theta * t_media * visibility;
         return LightSampleOutcome::Lit;
     }
 

@@ -1,8 +1,8 @@
 #include "surface/surface_scene.h"
 
 #include "core/error.h"
+#include "lights/ray_sphere.h"
 #include "surface/box_faces.h"
-#include "surface/ray_sphere.h"
 #include "surface/sphere_light_occluders.h"
 
 #include <embree3/rtcore.h>

@@ -6,6 +6,7 @@
 #include "render/integrator.h"
 #include "render/whitted.h"
 #include "surface/fresnel.h"
+#include "surface/phong_brdf.h"
 #include "volume/march_walk.h"
 #include "volume/transmittance.h"
 #include "volume/volume_path.h"
@@ -18,18 +19,6 @@ namespace {
 constexpr float kTailTransmittance = 1e-6f;
 /// Specular bounces a final-gather ray follows through mirrors and glass to a Phong surface.
 constexpr int kGatherSpecularDepth = 8;
-
-/// Normalised modified Phong BRDF per steradian (Lafortune & Willems 1994), as shade_surface.
-Rgb phong_brdf(const PhongMaterial& m, const Vec3& n, const Vec3& wo, const Vec3& wi) {
-    Rgb f = m.kd * kInvPi;
-    if (max_component(m.ks) > 0.0f) {
-        const Vec3 mirror = 2.0f * glm::dot(n, wi) * n - wi;
-        const float cos_alpha = std::max(0.0f, glm::dot(mirror, wo));
-        f += specular_reflectance(m, std::max(0.0f, glm::dot(n, wi))) *
-             ((m.n + 2.0f) * kInv2Pi * std::pow(cos_alpha, m.n));
-    }
-    return f;
-}
 
 /// Geometric and shading normals turned to the side wo leaves from.
 void face_normals(const SurfaceHit& hit, const Vec3& wo, Vec3& ng, Vec3& ns) {
@@ -52,7 +41,7 @@ Rgb map_radiance(const PhotonRenderContext& c, const PhotonMap& map, const Phong
     face_normals(hit, wo, ng, ns);
     return surface_estimate(map, hit.position, ng, c.settings.k, c.settings.max_radius_m,
                             c.settings.filter, scratch(),
-                            [&](const Vec3& wi) { return phong_brdf(m, ns, wo, wi); });
+                            [&](const Vec3& wi) { return eval(m, ns, wo, wi); });
 }
 
 /// Transmittance of the media over a ray segment (exact for homogeneous media).
@@ -136,7 +125,7 @@ Rgb final_gather(const PhotonRenderContext& c, const PhongMaterial& m, const Sur
         if (!(glm::dot(wi, ng) > 0.0f))
             continue;
         const Rgb l = gather_ray(c, Ray{offset_ray_origin(hit, wi), wi, 0.0f, kInfinity}, rng);
-        sum += kPi * phong_brdf(m, ns, wo, wi) * l;
+        sum += kPi * eval(m, ns, wo, wi) * l;
     }
     return sum / static_cast<float>(n);
 }

@@ -2,6 +2,7 @@
 
 #include "core/sampling.h"
 #include "surface/fresnel.h"
+#include "surface/phong_brdf.h"
 #include "volume/transmittance.h"
 
 #include <tbb/blocked_range.h>
@@ -61,10 +62,7 @@ bool scatter_phong(const PhongMaterial& m, const Vec3& ns, const Vec3& ng, PathS
         d = Frame(ns).to_world(sample_cosine_hemisphere(rng.next_vec2()));
         s.power *= m.kd / p_d;
     } else if (u < p_d + p_s) {
-        const Vec3 mirror = reflect(wi, ns);
-        const Vec2 v = rng.next_vec2();
-        const float cos_alpha = std::pow(v.x, 1.0f / (m.n + 1.0f));
-        d = direction_about(mirror, cos_alpha, kTwoPi * v.y);
+        d = sample_specular_lobe(reflect(wi, ns), m.n, rng.next_vec2());
         const float cos_o = glm::dot(ns, d);
         if (!(cos_o > 0.0f))
             return false;

@@ -1,8 +1,8 @@
-// The reference path tracer (gi/path_tracer.h) and its Phong sampler (gi/gi_phong.h).
+// The reference path tracer (gi/path_tracer.h); its Phong BRDF is tested in
+// tests/surface/phong_brdf_test.cpp.
 #include "gi/path_tracer.h"
 #include "core/error.h"
 #include "core/sampling.h"
-#include "gi/gi_phong.h"
 #include "render/probe.h"
 #include "tests/gi/gi_test_scene.h"
 
@@ -12,78 +12,6 @@
 
 namespace kasumi {
 namespace {
-
-/// ∫ pdf dω over the sphere by a midpoint rule in (cos θ, φ) on the upper hemisphere (the
-/// pdf is zero below): must be 1 for a normalised density.
-double integrate_pdf(const PhongMaterial& m, const Vec3& n, const Vec3& wo) {
-    const int steps = 800;
-    double sum = 0.0;
-    for (int i = 0; i < steps; ++i) {
-        const float mu = (i + 0.5f) / steps;
-        for (int j = 0; j < steps; ++j) {
-            const float phi = kTwoPi * (j + 0.5f) / steps;
-            const Vec3 wi = direction_about(n, mu, phi);
-            sum += phong_pdf(m, n, wo, wi);
-        }
-    }
-    return sum * (1.0 / steps) * (2.0 * kPiD / steps);
-}
-
-TEST(PhongSamplerTest, PdfIsNormalisedOverTheHemisphere) {
-    const Vec3 n(0, 0, 1);
-    PhongMaterial m;
-    m.kd = Rgb(0.5f);
-    m.ks = Rgb(0.3f);
-    for (const float exponent : {1.0f, 20.0f, 200.0f}) {
-        m.n = exponent;
-        // At normal view the lobe lies inside the hemisphere: the mixture integrates to 1.
-        EXPECT_NEAR(integrate_pdf(m, n, n), 1.0, 2e-3) << exponent;
-        // At a grazing view part of the lobe falls below the surface: less than 1, never more.
-        EXPECT_LE(integrate_pdf(m, n, glm::normalize(Vec3(1, 0, 0.2f))), 1.0 + 2e-3);
-    }
-}
-
-TEST(PhongSamplerTest, SamplesCarryTheirPdfAndValue) {
-    const Vec3 n(0, 0, 1), wo = glm::normalize(Vec3(0.4f, 0.1f, 1.0f));
-    PhongMaterial m;
-    m.kd = Rgb(0.4f, 0.5f, 0.6f);
-    m.ks = Rgb(0.3f);
-    m.n = 30.0f;
-    Pcg32 rng(7, 11);
-    for (int k = 0; k < 1000; ++k) {
-        const float u_lobe = rng.next_float();
-        const auto s = phong_sample(m, n, wo, u_lobe, rng.next_vec2());
-        if (!s)
-            continue;
-        EXPECT_NEAR(s->pdf, phong_pdf(m, n, wo, s->wi), 1e-4f * s->pdf);
-        EXPECT_NEAR(s->f.g, phong_eval(m, n, wo, s->wi).g, 1e-6f);
-        EXPECT_GT(glm::dot(n, s->wi), 0.0f);
-    }
-}
-
-TEST(PhongSamplerTest, DirectionalAlbedoIsAtMostKdPlusKs) {
-    // Energy conservation of the normalised lobe: ∫ f cos θ dω <= kd + ks for every view,
-    // estimated by importance sampling with 2e5 samples (standard error < 0.2%).
-    PhongMaterial m;
-    m.kd = Rgb(0.6f);
-    m.ks = Rgb(0.4f);
-    m.n = 10.0f;
-    const Vec3 n(0, 0, 1);
-    for (const float cos_view : {1.0f, 0.5f, 0.1f}) {
-        const Vec3 wo(std::sqrt(1 - cos_view * cos_view), 0.0f, cos_view);
-        Pcg32 rng(3, 5);
-        double sum = 0.0;
-        const int count = 200000;
-        for (int k = 0; k < count; ++k) {
-            const float u_lobe = rng.next_float();
-            if (const auto s = phong_sample(m, n, wo, u_lobe, rng.next_vec2()))
-                sum += s->f.g * glm::dot(n, s->wi) / s->pdf;
-        }
-        EXPECT_LE(sum / count, 1.0 + 0.01) << cos_view;
-        // The diffuse part alone (kd = 0.6) is reflected whatever the view.
-        EXPECT_GE(sum / count, 0.6 - 0.01) << cos_view;
-    }
-}
 
 TEST(PathTracerTest, RejectsMaterialsThatCreateEnergy) {
     const std::string scene = R"({

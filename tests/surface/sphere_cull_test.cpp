@@ -4,7 +4,7 @@
 // silhouette from inside and outside by relative offsets down to 1e-7, from origins near and
 // far, on spheres near the origin and far from it (where the float centre is rounded), long
 // and unnormalised directions included; each answer must equal intersect_sphere's in double.
-#include "surface/ray_sphere.h"
+#include "lights/ray_sphere.h"
 #include "surface/surface_scene.h"
 #include "tests/surface/test_shapes.h"
 

@@ -1,4 +1,4 @@
-#include "surface/ray_sphere.h"
+#include "lights/ray_sphere.h"
 
 #include <gtest/gtest.h>
 
