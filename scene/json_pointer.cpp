@@ -75,7 +75,11 @@ std::string write_value(Json& root, const std::vector<std::string>& tokens, Json
                 (*node)[token] = std::move(value);
                 return {};
             }
-            node = it != node->end() ? &*it : &((*node)[token] = Json::object());
+            // A missing parent is an object, or an array when the next token appends ("-").
+            const bool append_next = tokens[i + 1] == "-";
+            node = it != node->end()
+                       ? &*it
+                       : &((*node)[token] = append_next ? Json::array() : Json::object());
         } else if (node->is_array()) {
             if (token == "-" && last) {
                 node->push_back(std::move(value));

@@ -25,9 +25,9 @@ std::optional<size_t> array_index(const std::string& token);
 const Json* find_value(const Json& root, const std::vector<std::string>& tokens);
 
 /// Writes `value` at `tokens` in `root` like `mkdir -p`: missing objects along the way are
-/// created, an existing value is replaced, "-" as the last token appends to an array. Returns
-/// an empty string, or why nothing was written: an array index that is not one or lies past the
-/// end, or a step into a value that is not an object or array.
+/// created (an array where the next token is "-"), an existing value is replaced, "-" as the last
+/// token appends to an array. Returns an empty string, or why nothing was written: an array index
+/// that is not one or lies past the end, or a step into a value that is not an object or array.
 std::string write_value(Json& root, const std::vector<std::string>& tokens, Json value);
 
 }  // namespace kasumi

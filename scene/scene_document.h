@@ -31,8 +31,9 @@ class SceneDocument {
     /// The value at `pointer`; an input error naming the file and pointer when there is none.
     const Json& get(const std::string& pointer) const;
 
-    /// Writes `value` at `pointer` like `mkdir -p`: missing parent objects are created, an
-    /// existing value replaced, "-" as the last token appends to an array. An input error
+    /// Writes `value` at `pointer` like `mkdir -p`: missing parent objects are created (an
+    /// array where the next token is "-": /media/- on a scene without media), an existing value
+    /// replaced, "-" as the last token appends to an array. An input error
     /// "<file>: <source> <pointer>: <why>" for a malformed pointer, an index that is not one or
     /// lies past the end, or a step into a number, string, boolean or null; `source` says who
     /// set it ("--set", "--vary"; may be empty).

@@ -82,6 +82,8 @@ TEST(SceneDocument, DashAppendsAndIndicesReplace) {
     d.set("/lights/0/n", 5);
     d.set("/lights/1", Json{{"n", 2}});
     EXPECT_EQ(d.json(), Json::parse(R"({"lights": [{"n": 5}, {"n": 2}]})"));
+    d.set("/media/-", Json{{"type", "fog"}});  // a missing array before "-"
+    EXPECT_EQ(d.json()["media"], Json::parse(R"([{"type": "fog"}])"));
 }
 
 TEST(SceneDocument, UnfollowablePointersAreLocatedErrors) {
