@@ -5,6 +5,8 @@
 #include "phase/phase_quadrature.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace kasumi {
@@ -71,80 +73,162 @@ double identity(double mu) {
     return mu;
 }
 
-/// Cell edges in cos θ: uniform steps plus geometric ones toward both poles, so forward and
-/// backward peaks are split into several cells. The finest edge, 1 - |mu| = 2e-5, stays well
-/// above the rounding of mu recomputed from float directions (~1e-7), which would otherwise
-/// move samples across edges on the flanks of narrow peaks.
-std::vector<double> cos_edges() {
-    std::vector<double> edges = {-1.0, 1.0};
-    for (int i = 1; i < 40; ++i)
-        edges.push_back(-1.0 + 2.0 * i / 40.0);
-    for (int k = 2; k <= 20; ++k) {
-        const double d = 2.0 * std::pow(10.0, -0.25 * k);
-        edges.push_back(-1.0 + d);
-        edges.push_back(1.0 - d);
+constexpr int kPhiSectors = 8;
+
+/// Mass of p between scattering angles lo < hi (radians): 2π ∫ pdf dmu over [cos hi, cos lo].
+double theta_mass(const PhaseFunction& p, const std::vector<double>& nodes, double lo, double hi) {
+    const auto f = [&](double mu) { return pdf_precise(p, mu); };
+    return 2.0 * kPiD * integrate_mu(f, std::cos(hi), std::cos(lo), 1e-13, 1e-10, nodes);
+}
+
+std::vector<double> row_masses(const PhaseFunction& p, const std::vector<double>& edges) {
+    const std::vector<double> nodes = table_nodes(p);
+    std::vector<double> mass;
+    for (size_t i = 1; i < edges.size(); ++i)
+        mass.push_back(theta_mass(p, nodes, edges[i - 1], edges[i]));
+    return mass;
+}
+
+/// Candidate edges the rows are chosen from: 40 a decade from 1e-6 rad to 0.05 rad from each
+/// pole (narrow peaks), 0.25° steps between.
+std::vector<double> candidate_edges() {
+    std::vector<double> edges = {0.0, kPiD};
+    for (double t = 1e-6; t < 0.05; t *= std::pow(10.0, 1.0 / 40.0)) {
+        edges.push_back(t);
+        edges.push_back(kPiD - t);
+    }
+    for (int i = 1; i < 720; ++i) {
+        const double t = kPiD * i / 720.0;
+        if (t > 0.05 && t < kPiD - 0.05)
+            edges.push_back(t);
     }
     std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end(),
-                            [](double a, double b) { return std::abs(a - b) < 1e-12; }),
-                edges.end());
     return edges;
+}
+
+/// The cells shared by the test and its power: per θ row the probability, and whether the
+/// row's φ cells (expecting < 5 samples each) are pooled.
+struct Cells {
+    std::vector<double> mass;
+    std::vector<bool> pooled;
+};
+
+Cells make_cells(std::vector<double> mass, int samples) {
+    Cells c;
+    for (const double m : mass)
+        c.pooled.push_back(m * samples / kPhiSectors < 5.0);
+    c.mass = std::move(mass);
+    return c;
+}
+
+double chi_square_critical(int dof, double alpha) {
+    // Q(dof/2, x/2) falls monotonically in x: bisect for Q = alpha.
+    double lo = 0.0, hi = dof + 100.0 * std::sqrt(double(dof)) + 1000.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (upper_incomplete_gamma_q(0.5 * dof, 0.5 * mid) > alpha ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
 }
 
 }  // namespace
 
+double per_check_alpha(const ValidationOptions& options) {
+    // Šidák: n independent tests each at 1 - (1 - α)^{1/n} fail together with probability α.
+    // log1p/expm1 keep the digits: 1 - (1 - 1e-4)^{1/33} is 3.03e-6, near 1 - 1 in double.
+    return -std::expm1(std::log1p(-options.significance) / std::max(1, options.n_tests));
+}
+
+std::string decision_rule(const ValidationOptions& options) {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "false-failure rate %.3g for the run, Sidak over %d statistical check(s): a "
+                  "check fails when its p-value <= %.3g; %d samples",
+                  options.significance, std::max(1, options.n_tests), per_check_alpha(options),
+                  options.samples);
+    return line;
+}
+
+std::vector<double> chi_square_theta_edges(const PhaseFunction& p,
+                                           const ValidationOptions& options) {
+    const std::vector<double> candidates = candidate_edges();
+    const std::vector<double> mass = row_masses(p, candidates);
+    std::vector<double> cdf = {0.0};
+    for (const double m : mass)
+        cdf.push_back(cdf.back() + m);
+    const double total = cdf.back();
+    std::vector<double> targets;
+    const int k = std::max(2, options.theta_cells);
+    for (int i = 1; i < k; ++i)
+        targets.push_back(double(i) / k);
+    for (const double tail : {1e-5, 1e-4, 1e-3, 1e-2}) {
+        targets.push_back(tail);
+        targets.push_back(1.0 - tail);
+    }
+    std::vector<double> edges = {0.0, kPiD};
+    for (const double q : targets) {
+        // The first candidate whose cumulative probability reaches q (never a pole).
+        const auto it = std::lower_bound(cdf.begin(), cdf.end(), q * total);
+        const size_t j = std::clamp<size_t>(size_t(it - cdf.begin()), 1, candidates.size() - 2);
+        edges.push_back(candidates[j]);
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    return edges;
+}
+
 ChiSquareResult chi_square_test(const PhaseFunction& p, const Vec3& wo,
                                 const ValidationOptions& options) {
-    const std::vector<double> edges = cos_edges();
-    const int n_cos = static_cast<int>(edges.size()) - 1;
-    const int n_phi = 8;
-    const int n_cells = n_cos * n_phi;
+    return chi_square_test(
+        p, [&p](const Vec3& w, Vec2 u) { return sample(p, w, u); }, wo, options);
+}
+
+ChiSquareResult chi_square_test(const PhaseFunction& reference, const PhaseSampler& sampler,
+                                const Vec3& wo, const ValidationOptions& options) {
+    const std::vector<double> edges = chi_square_theta_edges(reference, options);
+    const int n_theta = static_cast<int>(edges.size()) - 1;
+    const int n_cells = n_theta * kPhiSectors;
     std::vector<double> observed(static_cast<size_t>(n_cells), 0.0);
     const AngularFrame frame(wo);
     Pcg32 rng(options.seed, 0x9e3779b9u);
     for (int i = 0; i < options.samples; ++i) {
-        const PhaseSample s = sample(p, wo, rng.next_vec2());
+        const PhaseSample s = sampler(wo, rng.next_vec2());
         if (!(s.pdf > 0.0f) || !is_finite(s.wi))
             continue;  // counts as missing mass: the cells then under-fill and the test fails
-        // The scattered light propagates along -wi; θ is its angle to wo (mu = cos θ).
-        const double mu = frame.cosine(s.wi);
+        // The scattered light propagates along -wi; θ is its angle to wo (mu = cos θ), binned
+        // in θ itself: near the poles cos θ in double from a float direction loses digits.
+        const double theta = scattering_angle(wo, s.wi);
         const double phi = frame.azimuth(s.wi);
-        const int ci = std::clamp(
-            static_cast<int>(std::upper_bound(edges.begin(), edges.end(), mu) - edges.begin()) - 1,
-            0, n_cos - 1);
-        const int pi = std::clamp(static_cast<int>(phi / (2.0 * kPiD) * n_phi), 0, n_phi - 1);
-        observed[static_cast<size_t>(ci * n_phi + pi)] += 1.0;
+        const int ti = std::clamp(
+            static_cast<int>(std::upper_bound(edges.begin(), edges.end(), theta) - edges.begin()) -
+                1,
+            0, n_theta - 1);
+        const int pi =
+            std::clamp(static_cast<int>(phi / (2.0 * kPiD) * kPhiSectors), 0, kPhiSectors - 1);
+        observed[static_cast<size_t>(ti * kPhiSectors + pi)] += 1.0;
     }
-    std::vector<double> expected(static_cast<size_t>(n_cells));
+    const Cells cells = make_cells(row_masses(reference, edges), options.samples);
     std::ostringstream table;
-    table << "cos_lo,cos_hi,observed,expected\n";
-    const std::vector<double> nodes = table_nodes(p);
-    const auto f = [&](double mu) { return pdf_precise(p, mu); };
-    for (int ci = 0; ci < n_cos; ++ci) {
-        // pdf per steradian integrated over the cell: Δφ ∫ pdf dmu, Δφ = 2π / n_phi.
-        const double mass = 2.0 * kPiD / n_phi *
-                            integrate_mu(f, edges[static_cast<size_t>(ci)],
-                                         edges[static_cast<size_t>(ci) + 1], 1e-12, 1e-9, nodes);
-        double obs_row = 0.0;
-        for (int pi = 0; pi < n_phi; ++pi) {
-            expected[static_cast<size_t>(ci * n_phi + pi)] = mass * options.samples;
-            obs_row += observed[static_cast<size_t>(ci * n_phi + pi)];
-        }
-        table << edges[static_cast<size_t>(ci)] << ',' << edges[static_cast<size_t>(ci) + 1] << ','
-              << obs_row << ',' << mass * n_phi * options.samples << '\n';
-    }
+    table << "theta_lo,theta_hi,observed,expected\n";
     ChiSquareResult result;
     double pooled_obs = 0.0, pooled_exp = 0.0;
-    for (int c = 0; c < n_cells; ++c) {
-        const double e = expected[static_cast<size_t>(c)], o = observed[static_cast<size_t>(c)];
-        if (e < 5.0) {
-            pooled_obs += o;
-            pooled_exp += e;
-            ++result.pooled_cells;
-            continue;
+    for (int ti = 0; ti < n_theta; ++ti) {
+        const double e = cells.mass[size_t(ti)] * options.samples / kPhiSectors;
+        double obs_row = 0.0;
+        for (int pi = 0; pi < kPhiSectors; ++pi) {
+            const double o = observed[static_cast<size_t>(ti * kPhiSectors + pi)];
+            obs_row += o;
+            if (cells.pooled[size_t(ti)]) {
+                pooled_obs += o;
+                pooled_exp += e;
+                ++result.pooled_cells;
+                continue;
+            }
+            result.statistic += (o - e) * (o - e) / e;
+            ++result.cells;
         }
-        result.statistic += (o - e) * (o - e) / e;
-        ++result.cells;
+        table << edges[size_t(ti)] << ',' << edges[size_t(ti) + 1] << ',' << obs_row << ','
+              << e * kPhiSectors << '\n';
     }
     if (pooled_exp >= 5.0) {
         result.statistic += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
@@ -156,12 +240,39 @@ ChiSquareResult chi_square_test(const PhaseFunction& p, const Vec3& wo,
     }
     result.dof = std::max(1, result.cells - 1);
     result.p_value = upper_incomplete_gamma_q(0.5 * result.dof, 0.5 * result.statistic);
-    // Šidák: n independent tests each at 1 - (1 - α)^{1/n} fail together with probability α.
-    result.threshold =
-        1.0 - std::pow(1.0 - options.significance, 1.0 / std::max(1, options.n_tests));
+    result.threshold = per_check_alpha(options);
     result.passed = result.p_value > result.threshold;
     result.table = table.str();
     return result;
+}
+
+double chi_square_power(const PhaseFunction& reference, const PhaseFunction& alternative,
+                        const ValidationOptions& options) {
+    const std::vector<double> edges = chi_square_theta_edges(reference, options);
+    const Cells cells = make_cells(row_masses(reference, edges), options.samples);
+    const std::vector<double> alt = row_masses(alternative, edges);
+    // Per φ cell p/8 and q/8: N Σ (q - p)² / p summed over a row's 8 cells is N (Q - P)² / P.
+    double lambda = 0.0, pooled_p = 0.0, pooled_q = 0.0;
+    int n_cells = 0;
+    for (size_t i = 0; i < cells.mass.size(); ++i) {
+        if (cells.pooled[i]) {
+            pooled_p += cells.mass[i];
+            pooled_q += alt[i];
+            continue;
+        }
+        lambda +=
+            options.samples * (alt[i] - cells.mass[i]) * (alt[i] - cells.mass[i]) / cells.mass[i];
+        n_cells += kPhiSectors;
+    }
+    if (pooled_p * options.samples >= 5.0) {
+        lambda += options.samples * (pooled_q - pooled_p) * (pooled_q - pooled_p) / pooled_p;
+        ++n_cells;
+    }
+    const int dof = std::max(1, n_cells - 1);
+    const double critical = chi_square_critical(dof, per_check_alpha(options));
+    // Noncentral χ²(dof, λ) has mean dof + λ and variance 2 (dof + 2 λ).
+    const double z = (critical - (dof + lambda)) / std::sqrt(2.0 * (dof + 2.0 * lambda));
+    return 0.5 * std::erfc(z / std::sqrt(2.0));
 }
 
 std::vector<PhaseCheck> validate_phase(const PhaseFunction& p, const ValidationOptions& options) {
@@ -172,20 +283,23 @@ std::vector<PhaseCheck> validate_phase(const PhaseFunction& p, const ValidationO
                      integrate_phase(p, one),
                      1.0,
                      options.normalisation_tolerance,
-                     "2π ∫ p(mu) dmu, adaptive Simpson"};
+                     "2π ∫ p(mu) dmu, adaptive Simpson",
+                     std::nullopt,
+                     std::nullopt};
         c.passed = std::abs(c.value - c.expected) <= c.tolerance;
         checks.push_back(c);
     }
     {
         const double measured = integrate_phase(p, identity);
         const std::optional<double> closed = closed_form_mean_cosine(p);
-        PhaseCheck c{
-            "mean_cosine",
-            false,
-            measured,
-            closed ? *closed : mean_cosine(p),
-            options.normalisation_tolerance,
-            closed ? "quadrature vs closed form" : "quadrature vs the table's exact value"};
+        PhaseCheck c{"mean_cosine",
+                     false,
+                     measured,
+                     closed ? *closed : mean_cosine(p),
+                     options.normalisation_tolerance,
+                     closed ? "quadrature vs closed form" : "quadrature vs the table's exact value",
+                     std::nullopt,
+                     std::nullopt};
         c.passed = std::abs(c.value - c.expected) <= c.tolerance;
         checks.push_back(c);
     }
@@ -202,7 +316,8 @@ std::vector<PhaseCheck> validate_phase(const PhaseFunction& p, const ValidationO
         }
         PhaseCheck c{"reciprocity", worst <= 1e-6,
                      worst,         0.0,
-                     1e-6,          "max relative |p(wo,wi) - p(wi,wo)| over 10^4 random pairs"};
+                     1e-6,          "max relative |p(wo,wi) - p(wi,wo)| over 10^4 random pairs",
+                     std::nullopt,  std::nullopt};
         checks.push_back(c);
     }
     {
@@ -237,20 +352,20 @@ std::vector<PhaseCheck> validate_phase(const PhaseFunction& p, const ValidationO
                      0.0,
                      n / 1000.0,
                      std::to_string(invalid) + " invalid samples, " + std::to_string(bad) +
-                         " disagreeing by > 2 % of " + std::to_string(n)};
+                         " disagreeing by > 2 % of " + std::to_string(n),
+                     std::nullopt,
+                     std::nullopt};
         checks.push_back(c);
     }
     {
         const ChiSquareResult chi =
             chi_square_test(p, glm::normalize(Vec3(0.2f, 0.7f, -0.4f)), options);
-        PhaseCheck c{"chi_square",
-                     chi.passed,
-                     chi.p_value,
-                     1.0,
-                     chi.threshold,
-                     "chi2 = " + std::to_string(chi.statistic) + ", dof = " +
-                         std::to_string(chi.dof) + ", " + std::to_string(chi.pooled_cells) +
-                         " cells pooled; passes when p-value > " + std::to_string(chi.threshold)};
+        char detail[200];
+        std::snprintf(detail, sizeof detail,
+                      "chi2 = %.6g, dof = %d, %d cells pooled; passes when p-value > %.3g",
+                      chi.statistic, chi.dof, chi.pooled_cells, chi.threshold);
+        PhaseCheck c{"chi_square",  chi.passed, chi.p_value, 1.0,
+                     chi.threshold, detail,     chi.p_value, chi.threshold};
         checks.push_back(c);
     }
     return checks;

@@ -25,13 +25,27 @@ if ! [[ "$frames" =~ ^([0-9]+)-([0-9]+)(:([0-9]+))?$ ]]; then
   exit 2
 fi
 first="${BASH_REMATCH[1]}" last="${BASH_REMATCH[2]}" step="${BASH_REMATCH[4]:-1}"
+count=$(( (last - first) / step + 1 ))
 if [ "$per" -le 1 ]; then
   array="$first-$last:$step"                         # index = frame
 else
-  count=$(( (last - first) / step + 1 ))
   array="0-$(( (count + per - 1) / per - 1 ))"       # index = chunk
 fi
 [ "${MAX_PARALLEL:-0}" -gt 0 ] && array="$array%$MAX_PARALLEL"
+
+# Slurm refuses an array index >= MaxArraySize (default 1001) with only "Invalid job array
+# specification": name the limit and the chunk size that fits (frames past 1000 need chunks).
+top=$(( (count + per - 1) / per - 1 ))                 # the last chunk
+[ "$per" -le 1 ] && top=$((first + (count - 1) * step))  # the last frame
+max_array="$( (scontrol show config 2>/dev/null || true) |
+  sed -n 's/^MaxArraySize *= *\([0-9]*\).*/\1/p')"
+if [ -n "$max_array" ] && [ "$top" -ge "$max_array" ]; then
+  need=$(( (count + max_array - 1) / max_array ))
+  [ "$need" -lt 2 ] && need=2
+  echo "submit_sequence.sh: array index $top >= MaxArraySize $max_array of this cluster;" \
+    "use FRAMES_PER_TASK=$need or more" >&2
+  exit 2
+fi
 
 export SCENE="$scene" OUTPUT="$output" FRAMES="$frames" FRAMES_PER_TASK="$per"
 export KASUMI="${KASUMI:-kasumi}" KASUMI_ARGS="$*" PREVIEW_DIR="${PREVIEW_DIR:-}"
