@@ -9,7 +9,6 @@
 #include "render/frame_output.h"
 #include "render/probe.h"
 #include "render/renderer.h"
-#include "scene/animation.h"
 #include "sequence/sequence_cache.h"
 #include "volume/transmittance.h"
 
@@ -126,34 +125,9 @@ void add_render_command(CLI::App& root) {
             scene_options.sets.push_back("/film/width=" + std::to_string(res.width));
             scene_options.sets.push_back("/film/height=" + std::to_string(res.height));
         }
-        // Overrides need their parent objects; create film/render when the scene omits them.
         StageTimes times;
         const auto load_start = std::chrono::steady_clock::now();
-        SceneDesc desc = [&] {
-            std::vector<Override> overrides;
-            for (const std::string& s : scene_options.sets)
-                overrides.push_back(parse_override(s));
-            Json doc = read_json_file(scene_options.scene_path);
-            if (doc.is_object()) {
-                for (const char* key : {"film", "render"}) {
-                    if (!doc.contains(key))
-                        doc[key] = Json::object();
-                }
-            }
-            doc = animated_document(std::move(doc), overrides, options->frame,
-                                    scene_options.scene_path);
-            try {
-                return parse_scene(doc, scene_options.scene_path);
-            } catch (const Error& e) {
-                // As `sequence` says it: where the frame lies among the key frames.
-                if (e.kind() != ErrorKind::Input)
-                    throw;
-                throw Error(
-                    e.kind(),
-                    e.what() + frame_context(read_json_file(scene_options.scene_path), overrides,
-                                             options->frame, scene_options.scene_path, e.what()));
-            }
-        }();
+        SceneDesc desc = scene_options.load(options->frame);
         times.load_s = seconds_since(load_start);
 
         OutputPaths paths;
@@ -256,61 +230,20 @@ void add_plan_command(CLI::App& root) {
     });
 }
 
-namespace {
-
-/// An animated scene is valid at frame 0 (SceneOptions::load) and must be at every key frame
-/// too, or `sequence` would fail midway; files are read once (SequenceCache).
-void check_key_frames(const SceneOptions& options) {
-    std::vector<Override> overrides;
-    for (const std::string& s : options.sets)
-        overrides.push_back(parse_override(s));
-    Json root = read_json_file(options.scene_path);
-    apply_overrides(root, overrides, options.scene_path);
-    std::set<int64_t> frames;
-    const Animation animation = parse_animation(root, options.scene_path);
-    for (const Track& track : animation.tracks) {
-        for (const Keyframe& key : track.keys)
-            frames.insert(key.frame);
-    }
-    frames.erase(0);
-    SequenceCache cache;
-    for (const int64_t frame : frames) {
-        try {
-            parse_scene(animated_document(read_json_file(options.scene_path), overrides, frame,
-                                          options.scene_path),
-                        options.scene_path, &cache);
-        } catch (const Error& e) {
-            throw Error(e.kind(), e.what() + frame_context(animation, frame, e.what()));
-        }
-    }
-}
-
-/// SceneOptions::load, the scene at frame 0; an input error there in an animated scene says
-/// where frame 0 lies among the key frames, as check_key_frames does for the others.
-SceneDesc load_frame_zero(const SceneOptions& options) {
-    try {
-        return options.load();
-    } catch (const Error& e) {
-        if (e.kind() != ErrorKind::Input)
-            throw;
-        std::vector<Override> overrides;
-        for (const std::string& s : options.sets)
-            overrides.push_back(parse_override(s));
-        throw Error(e.kind(), e.what() + frame_context(read_json_file(options.scene_path),
-                                                       overrides, 0, options.scene_path, e.what()));
-    }
-}
-
-}  // namespace
-
 void add_check_command(CLI::App& root) {
     auto options = std::make_shared<SceneOptions>();
     CLI::App* cmd =
         root.add_subcommand("check", "validate a scene and resolve its files; render nothing");
     options->add_to(*cmd);
     cmd->callback([options] {
-        const SceneDesc desc = load_frame_zero(*options);
-        check_key_frames(*options);
+        // Frame 0, then every key frame, or `sequence` would fail midway; files are read once.
+        const SceneSource source = options->source();
+        const SceneDesc desc = source.scene(0);
+        SequenceCache cache;
+        for (const int64_t frame : source.key_frames()) {
+            if (frame != 0)
+                (void)source.scene(frame, &cache);
+        }
         if (!options->quiet) {
             std::cout << desc.file << ": ok (" << desc.shapes.size() << " shapes, "
                       << desc.lights.size() << " lights, " << desc.media.size() << " media, "

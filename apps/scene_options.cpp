@@ -14,12 +14,20 @@ void SceneOptions::add_to(CLI::App& command) {
     command.add_flag("-v,--verbose", verbose, "print the plan and render statistics")->excludes(q);
 }
 
-SceneDesc SceneOptions::load() const {
-    std::vector<Override> overrides;
-    overrides.reserve(sets.size());
+std::vector<Override> SceneOptions::overrides() const {
+    std::vector<Override> out;
+    out.reserve(sets.size());
     for (const std::string& s : sets)
-        overrides.push_back(parse_override(s));
-    return load_scene(scene_path, overrides);
+        out.push_back(parse_override(s));
+    return out;
+}
+
+SceneSource SceneOptions::source() const {
+    return SceneSource(scene_path, overrides());
+}
+
+SceneDesc SceneOptions::load(int64_t frame) const {
+    return source().scene(frame);
 }
 
 Vec3 parse_vec3_arg(const std::string& text, const std::string& option) {

@@ -17,8 +17,12 @@ struct SceneOptions {
 
     /// Registers SCENE, --set, -q and -v on `command`.
     void add_to(CLI::App& command);
-    /// Loads the scene with the overrides applied.
-    SceneDesc load() const;
+    /// The --set overrides, parsed (a usage error for a malformed one).
+    std::vector<Override> overrides() const;
+    /// The scene file with the overrides applied (scene/scene_loader.h), as every command reads it.
+    SceneSource source() const;
+    /// The scene of `frame` with the overrides applied (an animated scene's frame 0 by default).
+    SceneDesc load(int64_t frame = 0) const;
 };
 
 /// Parses a command-line vector "X,Y,Z"; throws ErrorKind::Usage naming `option` otherwise.

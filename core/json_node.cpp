@@ -2,12 +2,7 @@
 
 #include "core/error.h"
 
-#include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace kasumi {
@@ -223,105 +218,6 @@ void JsonObjectReader::finish() const {
                                m_node.pointer() + "/" + json_pointer_escape(item.key()));
         unknown.fail("unknown key \"" + item.key() + "\" (expected one of: " + expected + ")");
     }
-}
-
-namespace {
-
-/// Deepest nesting of arrays and objects accepted in a JSON text. Scenes nest about six levels;
-/// nlohmann::json parses any depth, but printing or walking a value recurses once per level and
-/// 100000 levels overflowed the stack (a crash instead of an error).
-constexpr int kMaxJsonDepth = 256;
-
-/// Throws an input error at the first bracket nested deeper than kMaxJsonDepth (outside strings
-/// and the // and /* */ comments the parser accepts).
-void check_json_depth(const std::string& text, const std::string& file) {
-    int depth = 0, line = 1;
-    size_t line_start = 0;
-    for (size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (c == '\n') {
-            ++line;
-            line_start = i + 1;
-        } else if (c == '"') {
-            for (++i; i < text.size() && text[i] != '"'; ++i)
-                if (text[i] == '\\')
-                    ++i;
-        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
-            while (i + 1 < text.size() && text[i + 1] != '\n')
-                ++i;
-        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-            const size_t end = text.find("*/", i + 2);
-            for (size_t j = i; j < std::min(end, text.size()); ++j)
-                if (text[j] == '\n') {
-                    ++line;
-                    line_start = j + 1;
-                }
-            i = end == std::string::npos ? text.size() : end + 1;
-        } else if (c == '[' || c == '{') {
-            if (++depth > kMaxJsonDepth) {
-                throw_input_error(file + ": invalid JSON: line " + std::to_string(line) +
-                                  ", column " + std::to_string(i - line_start + 1) +
-                                  ": nested deeper than " + std::to_string(kMaxJsonDepth) +
-                                  " levels");
-            }
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
-    }
-}
-
-}  // namespace
-
-Json parse_json_text(const std::string& text, const std::string& file) {
-    check_json_depth(text, file);
-    try {
-        return Json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-    } catch (const Json::parse_error& e) {
-        // e.what() is "[json.exception.parse_error.101] parse error at line L, column C: ...";
-        // the library's tag says nothing to the user.
-        std::string what = e.what();
-        const size_t tag_end = what.find("] ");
-        if (!what.empty() && what.front() == '[' && tag_end != std::string::npos)
-            what = what.substr(tag_end + 2);
-        throw_input_error(file + ": invalid JSON: " + what);
-    }
-}
-
-Json read_json_file(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw_input_error(path + ": is a directory, expected a JSON file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw_input_error(path + ": cannot open file: " + std::strerror(errno));
-    // Read at most kMaxBytes + 1: a device or FIFO named as the scene (/dev/zero) would
-    // otherwise be read until memory runs out. Large geometry lives in OBJ files, not here.
-    constexpr size_t kMaxBytes = size_t{64} << 20;
-    std::string text;
-    char chunk[65536];
-    while (in && text.size() <= kMaxBytes) {
-        in.read(chunk, sizeof(chunk));
-        text.append(chunk, static_cast<size_t>(in.gcount()));
-    }
-    if (in.bad())
-        throw_input_error(path + ": read error");
-    if (text.size() > kMaxBytes)
-        throw_input_error(path + ": larger than 64 MiB, expected a JSON scene file");
-    return parse_json_text(text, path);
-}
-
-std::string json_pointer_escape(const std::string& key) {
-    std::string out;
-    for (char c : key) {
-        if (c == '~') {
-            out += "~0";
-        } else if (c == '/') {
-            out += "~1";
-        } else {
-            out += c;
-        }
-    }
-    return out;
 }
 
 }  // namespace kasumi

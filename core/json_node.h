@@ -2,9 +2,8 @@
 /// Located access to a JSON document: every value knows its file and JSON pointer, so each
 /// input error reads "scene.json: /media/0/phase/g = 1.2: must be in (-1, 1)".
 #include "core/color.h"
+#include "core/json_text.h"
 #include "core/math.h"
-
-#include <nlohmann/json.hpp>
 
 #include <memory>
 #include <optional>
@@ -13,8 +12,6 @@
 #include <vector>
 
 namespace kasumi {
-
-using Json = nlohmann::json;
 
 /// Largest scene coordinate or length, metres. Beyond it single precision breaks down: a
 /// squared distance (2 * 1e12)^2 * 3 and a cube of a coordinate difference stay finite in
@@ -91,14 +88,5 @@ class JsonObjectReader {
     JsonNode m_node;
     std::set<std::string> m_known;
 };
-
-/// Parses JSON text that may contain // and /* */ comments; errors name the file and position.
-Json parse_json_text(const std::string& text, const std::string& file);
-
-/// Reads and parses a JSON file (comments allowed).
-Json read_json_file(const std::string& path);
-
-/// Escapes a key for use in a JSON pointer (RFC 6901: ~ → ~0, / → ~1).
-std::string json_pointer_escape(const std::string& key);
 
 }  // namespace kasumi

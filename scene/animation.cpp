@@ -1,6 +1,7 @@
 #include "scene/animation.h"
 
 #include "core/error.h"
+#include "scene/json_pointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -126,19 +127,17 @@ double lerp(double a, double b, double t) {
 Track parse_track(const JsonNode& node, const Json& root, const std::string& pointer) {
     if (pointer.empty() || pointer[0] != '/')
         node.fail("the key must be a JSON pointer into the scene, e.g. \"/sun/elevation_deg\"");
-    Json::json_pointer target;
-    try {
-        target = Json::json_pointer(pointer);
-    } catch (const Json::exception&) {
+    const auto tokens = pointer_tokens(pointer);
+    if (!tokens)
         node.fail("\"" + pointer + "\" is not a valid JSON pointer");
-    }
-    if (pointer == "/animate" || pointer.rfind("/animate/", 0) == 0)
+    if (!tokens->empty() && tokens->front() == "animate")
         node.fail("cannot animate the animation itself");
-    if (!root.contains(target))
+    const Json* found = find_value(root, *tokens);
+    if (found == nullptr)
         node.fail("unknown pointer: " + pointer +
                   " does not exist in the scene (give it a value "
                   "there first)");
-    const Json& current = root.at(target);
+    const Json& current = *found;
     Track track;
     track.pointer = pointer;
     size_t length = 0;
@@ -308,11 +307,12 @@ int64_t Animation::last_frame() const {
     return tracks.empty() ? 0 : last;
 }
 
-Animation parse_animation(const Json& root, const std::string& file) {
+Animation parse_animation(const SceneDocument& doc) {
     Animation animation;
+    const Json& root = doc.json();
     if (!root.is_object() || !root.contains("animate"))
         return animation;
-    const JsonNode node = JsonNode(root, file).child("animate");
+    const JsonNode node = JsonNode(root, doc.file()).child("animate");
     if (!node.is_object())
         node.fail("expected an object {\"/json/pointer\": [[frame, value], ...], ...}");
     for (const auto& item : node.value().items())
@@ -388,48 +388,28 @@ std::string frame_context(const Animation& animation, int64_t frame, const std::
            " of /animate" + tracks + ")";
 }
 
-std::string frame_context(Json root, const std::vector<Override>& overrides, int64_t frame,
-                          const std::string& file, const std::string& message) {
-    apply_overrides(root, overrides, file);
-    if (!root.is_object() || !root.contains("animate"))
-        return std::string();
-    return frame_context(parse_animation(root, file), frame, message);
-}
-
-Json frame_document(const Json& root, const Animation& animation, int64_t frame) {
-    Json doc = root;
-    if (doc.is_object())
-        doc.erase("animate");
+SceneDocument frame_document(const SceneDocument& doc, const Animation& animation, int64_t frame) {
+    SceneDocument out = doc;
+    if (out.json().is_object())
+        out.json().erase("animate");
     for (const Track& track : animation.tracks)
-        doc[Json::json_pointer(track.pointer)] = evaluate(track, frame);
-    return doc;
+        out.set(track.pointer, evaluate(track, frame), "/animate");
+    return out;
 }
 
-void apply_animation(Json& root, int64_t frame, const std::string& file) {
-    if (!root.is_object() || !root.contains("animate"))
+void apply_animation(SceneDocument& doc, int64_t frame) {
+    if (!doc.json().is_object() || !doc.json().contains("animate"))
         return;
-    const Animation animation = parse_animation(root, file);
-    root = frame_document(root, animation, frame);
+    doc = frame_document(doc, parse_animation(doc), frame);
 }
 
-void reapply_overrides(Json& frame_doc, const std::vector<Override>& overrides,
-                       const std::string& file) {
+void reapply_overrides(SceneDocument& frame_doc, const std::vector<Override>& overrides) {
     std::vector<Override> outside;
     for (const Override& o : overrides) {
         if (o.pointer != "/animate" && o.pointer.rfind("/animate/", 0) != 0)
             outside.push_back(o);
     }
-    apply_overrides(frame_doc, outside, file);
-}
-
-Json animated_document(Json root, const std::vector<Override>& overrides, int64_t frame,
-                       const std::string& file) {
-    apply_overrides(root, overrides, file);
-    if (!root.is_object() || !root.contains("animate"))
-        return root;
-    apply_animation(root, frame, file);
-    reapply_overrides(root, overrides, file);
-    return root;
+    apply_overrides(frame_doc, outside);
 }
 
 }  // namespace kasumi

@@ -7,7 +7,7 @@
 /// (interpolated in time). Between two keys the value is linear in the frame number; before the
 /// first key and after the last one it holds the nearest key's value.
 #include "core/json_node.h"
-#include "scene/scene_loader.h"
+#include "scene/scene_document.h"
 
 #include <cstdint>
 #include <string>
@@ -58,12 +58,12 @@ struct Animation {
     int64_t last_frame() const;
 };
 
-/// Reads `root["animate"]` (absent: an empty Animation). Every pointer must name an existing
-/// value of `root` outside /animate, the key frames must be integers in strictly increasing
-/// order, and every key value must have the animated value's type (a number, an array of as
-/// many numbers, a date-time string with or without a zone like the others). Errors are input
-/// errors naming `file` and the JSON pointer of the offending keyframe.
-Animation parse_animation(const Json& root, const std::string& file);
+/// Reads the document's "animate" (absent: an empty Animation). Every pointer must name an
+/// existing value of the document outside /animate, the key frames must be integers in strictly
+/// increasing order, and every key value must have the animated value's type (a number, an
+/// array of as many numbers, a date-time string with or without a zone like the others). Errors
+/// are input errors naming the file and the JSON pointer of the offending keyframe.
+Animation parse_animation(const SceneDocument& doc);
 
 /// The value of `track` at `frame`: linear between the keys around it, the nearest key's value
 /// outside them; a key's own value exactly at a key frame.
@@ -76,27 +76,15 @@ Json evaluate(const Track& track, int64_t frame);
 /// "; /media/0/phase/g between key frames 5 and 10" (or "held at key frame 10", outside them).
 std::string frame_context(const Animation& animation, int64_t frame, const std::string& message);
 
-/// frame_context of the animation `root` holds once `overrides` are applied, as
-/// animated_document reads it: for an error in the document animated_document(root, overrides,
-/// frame, file) built (`kasumi render --frame N`). Empty when root has no "animate".
-std::string frame_context(Json root, const std::vector<Override>& overrides, int64_t frame,
-                          const std::string& file, const std::string& message);
-
-/// The document of `frame`: `root` without "animate", each track's value written at its pointer.
-Json frame_document(const Json& root, const Animation& animation, int64_t frame);
+/// The document of `frame`: `doc` without "animate", each track's value written at its pointer.
+SceneDocument frame_document(const SceneDocument& doc, const Animation& animation, int64_t frame);
 
 /// In place: parse_animation then frame_document (a no-op without "animate").
-void apply_animation(Json& root, int64_t frame, const std::string& file);
+void apply_animation(SceneDocument& doc, int64_t frame);
 
 /// Overrides applied to a frame's document after the animation: each --set whose pointer is
 /// outside /animate (those edit the keyframes, before evaluation) is applied again, so a value
 /// given on the command line wins over keyframes of the same pointer.
-void reapply_overrides(Json& frame_doc, const std::vector<Override>& overrides,
-                       const std::string& file);
-
-/// The document of `frame` as the CLI builds it: `root` with `overrides` applied, the
-/// animation evaluated at `frame`, then reapply_overrides.
-Json animated_document(Json root, const std::vector<Override>& overrides, int64_t frame,
-                       const std::string& file);
+void reapply_overrides(SceneDocument& frame_doc, const std::vector<Override>& overrides);
 
 }  // namespace kasumi

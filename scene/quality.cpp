@@ -88,25 +88,19 @@ std::string g3(double v) {
     return buf;
 }
 
-/// Sets `pointer` to `value` unless the document has it; records which.
-void fill(Json& doc, const std::string& pointer, const Json& value, QualityChoice& choice) {
-    const Json::json_pointer p(pointer);
-    if (doc.contains(p)) {
+/// Sets `pointer` to `value` unless the document has it; records which. Missing objects along
+/// the way (render/volume, film) are created; a parent that is not an object is left for the
+/// loader to report.
+void fill(SceneDocument& doc, const std::string& pointer, const Json& value,
+          QualityChoice& choice) {
+    if (doc.contains(pointer)) {
         choice.kept.push_back(pointer);
         return;
     }
-    Json* node = &doc;
-    const std::string parent = p.parent_pointer().to_string();
-    if (!parent.empty()) {
-        // Create the missing objects along the way (render/volume, film).
-        const Json::json_pointer pp(parent);
-        if (!doc.contains(pp))
-            doc[pp] = Json::object();
-        node = &doc[pp];
-        if (!node->is_object())
-            return;  // the loader reports the malformed value
-    }
-    doc[p] = value;
+    const Json* parent = doc.find(pointer.substr(0, pointer.rfind('/')));
+    if (parent != nullptr && !parent->is_object())
+        return;
+    doc.set(pointer, value);
     choice.applied.push_back(pointer + " = " + value.dump());
 }
 
@@ -138,18 +132,16 @@ const QualityPreset& quality_preset(QualityLevel level) {
     return kTable[static_cast<int>(level)];
 }
 
-QualityChoice apply_quality(Json& doc, const std::string& file) {
+QualityChoice apply_quality(SceneDocument& doc) {
     QualityChoice choice;
-    if (!doc.is_object() || !doc.contains("render") || !doc["render"].is_object() ||
-        !doc["render"].contains("quality")) {
+    if (!doc.json().is_object() || !doc.contains("/render/quality"))
         return choice;
-    }
-    const Json& q = doc["render"]["quality"];
+    const Json& q = doc.get("/render/quality");
     std::optional<QualityLevel> level;
     if (q.is_string())
         level = quality_from_name(q.get<std::string>());
     if (!level) {
-        throw_input_error(file + ": /render/quality = " + q.dump() +
+        throw_input_error(doc.file() + ": /render/quality = " + q.dump() +
                           ": expected \"draft\", \"default\", \"final\" or \"reference\"");
     }
     choice.level = level;
@@ -157,8 +149,9 @@ QualityChoice apply_quality(Json& doc, const std::string& file) {
     fill(doc, "/film/spp", preset.spp, choice);
 
     bool homogeneous = false, grid = false, height_fog = false;
-    if (doc.contains("media") && doc["media"].is_array()) {
-        for (const Json& m : doc["media"]) {
+    const Json* media = doc.find("/media");
+    if (media != nullptr && media->is_array()) {
+        for (const Json& m : *media) {
             homogeneous = homogeneous || medium_type(m) == "homogeneous";
             grid = grid || medium_type(m) == "vdb";
             height_fog = height_fog || medium_type(m) == "height_fog";
@@ -173,9 +166,11 @@ QualityChoice apply_quality(Json& doc, const std::string& file) {
     else if (height_fog)
         fill(doc, "/render/volume/estimator", preset.height_fog_estimator, choice);
     bool extended = false;
-    if (doc.contains("lights") && doc["lights"].is_array()) {
-        for (size_t i = 0; i < doc["lights"].size(); ++i) {
-            if (is_extended_light(doc["lights"][i])) {
+    const Json* lights = doc.find("/lights");
+    if (lights != nullptr && lights->is_array()) {
+        const size_t count = lights->size();
+        for (size_t i = 0; i < count; ++i) {
+            if (is_extended_light(doc.get("/lights/" + std::to_string(i)))) {
                 extended = true;
                 fill(doc, "/lights/" + std::to_string(i) + "/samples", preset.light_samples,
                      choice);
@@ -269,11 +264,11 @@ std::string scattering_bound_text(const ScatteringBound& b) {
            " (bound omega p / (1 - omega p), p = 1 - exp(-tau))";
 }
 
-void choose_integrator(const Json& doc, const std::vector<Medium>& media,
+void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& media,
                        VolumeIntegrator& integrator, QualityChoice& choice) {
     if (!choice.level)
         return;
-    if (doc.contains(Json::json_pointer("/render/volume/integrator"))) {
+    if (doc.contains("/render/volume/integrator")) {
         choice.integrator = "render.volume.integrator given by the scene";
         return;
     }

@@ -4,6 +4,7 @@
 /// the choice between single and multiple scattering from the media's albedo and optical
 /// thickness with a bound on the light that single scattering leaves out.
 #include "core/json_node.h"
+#include "scene/scene_document.h"
 #include "volume/in_scattering.h"
 
 #include <optional>
@@ -53,8 +54,8 @@ struct QualityChoice {
 /// document leaves unset: film.spp, render.volume.step_m (homogeneous media, else height fog),
 /// render.volume.estimator (VDB media, else height fog), samples of extended lights. Keys
 /// already present win.
-/// Throws ErrorKind::Input naming `file` and /render/quality for an unknown level.
-QualityChoice apply_quality(Json& doc, const std::string& file);
+/// Throws ErrorKind::Input naming the file and /render/quality for an unknown level.
+QualityChoice apply_quality(SceneDocument& doc);
 
 /// Bound on the light single scattering leaves out, from the largest single-scattering albedo
 /// omega (any channel) and an optical thickness tau of the media. A photon that has scattered
@@ -80,7 +81,7 @@ ScatteringBound scattering_bound(const std::vector<Medium>& media);
 /// With a quality level and no /render/volume/integrator in `doc`: single scattering when
 /// scattering_bound(media).bound is within the level's tolerance, else multiple. Records the
 /// reason in choice.integrator. Without a level, or with the integrator given, leaves it.
-void choose_integrator(const Json& doc, const std::vector<Medium>& media,
+void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& media,
                        VolumeIntegrator& integrator, QualityChoice& choice);
 
 /// Text for the plan: "omega = 0.93, tau = 1.3: single scattering leaves out <= 150% ...".

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 
 namespace kasumi {
 
@@ -143,72 +144,12 @@ RenderSettings parse_render(const JsonNode& node) {
     return render;
 }
 
-/// Walks a JSON pointer to the parent container of its last token; fails unless it exists.
-Json& pointer_parent(Json& root, const std::string& pointer, const std::string& file,
-                     std::string& last_token) {
-    const auto slash = pointer.rfind('/');
-    const std::string parent = pointer.substr(0, slash);
-    last_token = pointer.substr(slash + 1);
-    try {
-        Json& container = root.at(Json::json_pointer(parent));
-        if (!container.is_object() && !container.is_array()) {
-            throw_input_error(file + ": --set " + pointer + ": " + (parent.empty() ? "/" : parent) +
-                              " is not an object or array");
-        }
-        return container;
-    } catch (const Json::exception&) {
-        throw_input_error(file + ": --set " + pointer + ": " + (parent.empty() ? "/" : parent) +
-                          " does not exist in the scene");
-    }
-}
-
 }  // namespace
 
-Override parse_override(const std::string& text) {
-    const auto eq = text.find('=');
-    if (text.empty() || text[0] != '/' || eq == std::string::npos) {
-        throw Error(ErrorKind::Usage, "--set expects /json/pointer=VALUE, got \"" + text + "\"");
-    }
-    return Override{text.substr(0, eq), text.substr(eq + 1)};
-}
-
-void apply_overrides(Json& root, const std::vector<Override>& overrides, const std::string& file) {
-    for (const Override& o : overrides) {
-        Json value;
-        try {
-            value = Json::parse(o.value);
-        } catch (const Json::parse_error&) {
-            value = o.value;  // not JSON: a string
-        }
-        try {
-            (void)Json::json_pointer(o.pointer);
-        } catch (const Json::exception& e) {
-            throw Error(ErrorKind::Usage, "--set " + o.pointer + ": invalid JSON pointer");
-        }
-        std::string token;
-        Json& parent = pointer_parent(root, o.pointer, file, token);
-        if (parent.is_array()) {
-            std::size_t index = 0;
-            try {
-                index = std::stoul(token);
-            } catch (const std::exception&) {
-                throw_input_error(file + ": --set " + o.pointer + ": \"" + token +
-                                  "\" is not an array index");
-            }
-            if (index >= parent.size()) {
-                throw_input_error(file + ": --set " + o.pointer + ": index out of range");
-            }
-            parent[index] = value;
-        } else {
-            root[Json::json_pointer(o.pointer)] = value;
-        }
-    }
-}
-
 SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCache* cache) {
-    Json with_quality = root_value;
-    QualityChoice quality = apply_quality(with_quality, file);
-    const JsonNode root(with_quality, file);
+    SceneDocument with_quality(root_value, file);
+    QualityChoice quality = apply_quality(with_quality);
+    const JsonNode root(with_quality.json(), file);
     JsonObjectReader reader(root);
     SceneDesc scene;
     scene.file = file;
@@ -270,8 +211,46 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCa
     return scene;
 }
 
-SceneDesc load_scene(const std::string& path, const std::vector<Override>& overrides) {
-    return parse_scene(animated_document(read_json_file(path), overrides, 0, path), path);
+SceneSource::SceneSource(const std::string& path, std::vector<Override> overrides)
+    : m_overrides(std::move(overrides)), m_document(SceneDocument::read(path)) {
+    apply_overrides(m_document, m_overrides);
+    m_animation = parse_animation(m_document);
+}
+
+SceneDocument SceneSource::frame_document(int64_t frame) const {
+    if (!m_document.json().is_object() || !m_document.json().contains("animate"))
+        return m_document;
+    SceneDocument doc = kasumi::frame_document(m_document, m_animation, frame);
+    reapply_overrides(doc, m_overrides);
+    return doc;
+}
+
+SceneDesc SceneSource::scene(int64_t frame, ElementCache* cache) const {
+    return parse(frame_document(frame).json(), frame, cache);
+}
+
+SceneDesc SceneSource::parse(const Json& doc, int64_t frame, ElementCache* cache) const {
+    try {
+        return parse_scene(doc, m_document.file(), cache);
+    } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Input || m_animation.empty())
+            throw;
+        throw Error(e.kind(), e.what() + frame_context(m_animation, frame, e.what()));
+    }
+}
+
+std::vector<int64_t> SceneSource::key_frames() const {
+    std::set<int64_t> frames;
+    for (const Track& track : m_animation.tracks) {
+        for (const Keyframe& key : track.keys)
+            frames.insert(key.frame);
+    }
+    return {frames.begin(), frames.end()};
+}
+
+SceneDesc load_scene(const std::string& path, const std::vector<Override>& overrides,
+                     int64_t frame) {
+    return SceneSource(path, overrides).scene(frame);
 }
 
 }  // namespace kasumi

@@ -2,7 +2,9 @@
 /// Reads a scene file (JSON with comments) into a validated SceneDesc. Every error names the
 /// file and the JSON pointer of the offending value.
 #include "core/json_node.h"
+#include "scene/animation.h"
 #include "scene/scene.h"
+#include "scene/scene_document.h"
 
 #include <map>
 #include <string>
@@ -10,19 +12,6 @@
 #include <vector>
 
 namespace kasumi {
-
-/// One --set override: a JSON pointer and the text of its new value.
-struct Override {
-    std::string pointer;
-    std::string value;
-};
-
-/// Parses "--set" text "/json/pointer=VALUE"; throws a usage error if malformed.
-Override parse_override(const std::string& text);
-
-/// Applies overrides to a document: VALUE is read as JSON when it parses as JSON, else taken as
-/// a string. The parent of the pointer must exist.
-void apply_overrides(Json& root, const std::vector<Override>& overrides, const std::string& file);
 
 /// Reuses parsed scene elements across parse_scene calls (the frames of a sequence,
 /// sequence/sequence.h): each returns what parse_shape, parse_light or parse_medium would for
@@ -41,8 +30,42 @@ class ElementCache {
 /// media come from it.
 SceneDesc parse_scene(const Json& root, const std::string& file, ElementCache* cache = nullptr);
 
-/// Reads, overrides and parses a scene file; an animated scene gives its frame 0
-/// (scene/animation.h: the overrides win over keyframes of the same pointer).
-SceneDesc load_scene(const std::string& path, const std::vector<Override>& overrides = {});
+/// A scene file as every command reads it: the file with the command line's overrides
+/// applied (missing parents created), its animation, and the document and scene of any frame.
+class SceneSource {
+  public:
+    /// Reads `path` and applies `overrides`, then reads "animate" (input errors name the file).
+    SceneSource(const std::string& path, std::vector<Override> overrides = {});
+
+    /// The overridden document, "animate" still in it.
+    const SceneDocument& document() const { return m_document; }
+    const Animation& animation() const { return m_animation; }
+    const std::vector<Override>& overrides() const { return m_overrides; }
+
+    /// The document of `frame`: the animation evaluated, then the overrides outside /animate
+    /// applied again (reapply_overrides), so a value given on the command line wins.
+    SceneDocument frame_document(int64_t frame) const;
+
+    /// The scene of `frame` (parse_scene of frame_document). An input error in an animated
+    /// scene says where the frame lies among the key frames (frame_context).
+    SceneDesc scene(int64_t frame = 0, ElementCache* cache = nullptr) const;
+
+    /// parse_scene of a document of this source's file (frame_document's), with the error
+    /// context of `frame`.
+    SceneDesc parse(const Json& doc, int64_t frame, ElementCache* cache = nullptr) const;
+
+    /// The key frames of every track, ascending, without repeats.
+    std::vector<int64_t> key_frames() const;
+
+  private:
+    std::vector<Override> m_overrides;
+    SceneDocument m_document;
+    Animation m_animation;
+};
+
+/// Reads, overrides and parses a scene file at `frame` (0: an animated scene's frame 0):
+/// SceneSource(path, overrides).scene(frame).
+SceneDesc load_scene(const std::string& path, const std::vector<Override>& overrides = {},
+                     int64_t frame = 0);
 
 }  // namespace kasumi

@@ -6,7 +6,7 @@
 #include "gi/gi.h"
 #include "render/frame_output.h"
 #include "render/renderer.h"
-#include "scene/animation.h"
+#include "scene/scene_loader.h"
 #include "sequence/sequence_contact_sheet.h"
 #include "sequence/sequence_writer.h"
 
@@ -50,50 +50,23 @@ void log_line(std::FILE* log, const char* format, ...) {
     std::fflush(log);
 }
 
-/// The scene document every frame starts from: as `kasumi render` builds it, with film and
-/// render objects created for --res/--spp/--seed overrides, the overrides applied.
-Json base_document(const SequenceOptions& options) {
-    Json doc = read_json_file(options.scene_path);
-    if (doc.is_object()) {
-        for (const char* key : {"film", "render"}) {
-            if (!doc.contains(key))
-                doc[key] = Json::object();
-        }
-    }
-    apply_overrides(doc, options.overrides, options.scene_path);
-    return doc;
-}
-
-/// What stays fixed over a run: the base document, its animation, the element cache.
+/// What stays fixed over a run: the scene file with its overrides and animation, the element
+/// cache.
 struct SequenceScene {
-    const SequenceOptions& options;
-    Json base;
-    Animation animation;
+    SceneSource source;
     SequenceCache cache;
 
     explicit SequenceScene(const SequenceOptions& o)
-        : options(o),
-          base(base_document(o)),
-          animation(parse_animation(base, o.scene_path)),
-          cache(o.reuse) {}
+        : source(o.scene_path, o.overrides), cache(o.reuse) {}
 
     Json document(int64_t frame) const {
-        Json doc = frame_document(base, animation, frame);
-        reapply_overrides(doc, options.overrides, options.scene_path);
-        return doc;
+        SceneDocument doc = source.frame_document(frame);
+        return std::move(doc.json());
     }
 
     /// The scene of `frame`'s document; an input error says where the frame lies among the
     /// key frames, as `kasumi check` does (frame_context).
-    SceneDesc parse(const Json& doc, int64_t frame) {
-        try {
-            return parse_scene(doc, options.scene_path, &cache);
-        } catch (const Error& e) {
-            if (e.kind() != ErrorKind::Input || animation.empty())
-                throw;
-            throw Error(e.kind(), e.what() + frame_context(animation, frame, e.what()));
-        }
-    }
+    SceneDesc parse(const Json& doc, int64_t frame) { return source.parse(doc, frame, &cache); }
 };
 
 }  // namespace

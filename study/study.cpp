@@ -5,6 +5,7 @@
 #include "gi/gi.h"
 #include "render/probe.h"
 #include "render/renderer.h"
+#include "scene/json_pointer.h"
 #include "scene/scene_loader.h"
 
 #include <algorithm>
@@ -88,50 +89,9 @@ double median(std::vector<double> v) {
     return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// A JSON pointer token without its escapes (RFC 6901): ~1 is '/', ~0 is '~'.
-std::string unescape_token(std::string token) {
-    for (size_t p; (p = token.find("~1")) != std::string::npos;)
-        token.replace(p, 2, "/");
-    for (size_t p; (p = token.find("~0")) != std::string::npos;)
-        token.replace(p, 2, "~");
-    return token;
-}
-
-std::string escape_token(const std::string& key) {
-    std::string token;
-    for (const char c : key)
-        token += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
-    return token;
-}
-
-/// The tokens of a JSON pointer, still escaped ("/a/b" -> {"a", "b"}; "" -> {}).
-std::vector<std::string> pointer_tokens(const std::string& pointer) {
-    std::vector<std::string> tokens;
-    size_t start = 1;
-    while (start <= pointer.size() && !pointer.empty()) {
-        const size_t slash = pointer.find('/', start);
-        tokens.push_back(pointer.substr(start, slash - start));
-        if (slash == std::string::npos)
-            break;
-        start = slash + 1;
-    }
-    return tokens;
-}
-
-/// The child of `node` named by an escaped token, or null when there is none.
+/// The child of `node` that `token` names, or null when there is none.
 const Json* child(const Json* node, const std::string& token) {
-    if (node == nullptr)
-        return nullptr;
-    if (node->is_object()) {
-        const auto it = node->find(unescape_token(token));
-        return it == node->end() ? nullptr : &*it;
-    }
-    if (node->is_array() && !token.empty() &&
-        token.find_first_not_of("0123456789") == std::string::npos && token.size() < 10) {
-        const size_t index = std::stoul(token);
-        return index < node->size() ? &(*node)[index] : nullptr;
-    }
-    return nullptr;
+    return node == nullptr ? nullptr : find_value(*node, {token});
 }
 
 void expand_from(const Json* node, const std::vector<std::string>& tokens, size_t i,
@@ -142,8 +102,8 @@ void expand_from(const Json* node, const std::vector<std::string>& tokens, size_
         return;
     }
     if (tokens[i] != "*") {
-        expand_from(child(node, tokens[i]), tokens, i + 1, prefix + "/" + tokens[i], pointer, file,
-                    out);
+        expand_from(child(node, tokens[i]), tokens, i + 1,
+                    prefix + "/" + json_pointer_escape(tokens[i]), pointer, file, out);
         return;
     }
     const std::string where = prefix.empty() ? "the document" : prefix;
@@ -154,31 +114,12 @@ void expand_from(const Json* node, const std::vector<std::string>& tokens, size_
         }
     } else if (node != nullptr && node->is_object() && !node->empty()) {
         for (auto it = node->begin(); it != node->end(); ++it) {
-            expand_from(&it.value(), tokens, i + 1, prefix + "/" + escape_token(it.key()), pointer,
-                        file, out);
+            expand_from(&it.value(), tokens, i + 1, prefix + "/" + json_pointer_escape(it.key()),
+                        pointer, file, out);
         }
     } else {
         throw_input_error(file + ": " + pointer + ": '*' needs a non-empty array or object at " +
                           where);
-    }
-}
-
-/// Creates the missing objects along `pointer` (all but its last token) so an override can set
-/// a key the scene leaves at its default.
-void create_parents(Json& root, const std::string& pointer) {
-    Json* node = &root;
-    size_t start = 1;
-    while (true) {
-        const size_t slash = pointer.find('/', start);
-        if (slash == std::string::npos)
-            return;
-        const std::string token = unescape_token(pointer.substr(start, slash - start));
-        if (!node->is_object())
-            return;  // arrays and values: apply_overrides reports what is wrong
-        if (!node->contains(token))
-            (*node)[token] = Json::object();
-        node = &(*node)[token];
-        start = slash + 1;
     }
 }
 
@@ -402,8 +343,11 @@ std::vector<std::string> expand_wildcards(const Json& doc, const std::string& po
                                           const std::string& file) {
     if (pointer.find('*') == std::string::npos)
         return {pointer};
+    const auto tokens = pointer_tokens(pointer);
+    if (!tokens)
+        throw_input_error(file + ": " + pointer + ": invalid JSON pointer");
     std::vector<std::string> out;
-    expand_from(&doc, pointer_tokens(pointer), 0, "", pointer, file, out);
+    expand_from(&doc, *tokens, 0, "", pointer, file, out);
     return out;
 }
 
@@ -412,27 +356,23 @@ Json study_document(const std::string& scene_path, const std::vector<std::string
 }
 
 Json study_document_of(const std::string& scene_path, const std::vector<StudySetting>& settings) {
-    Json doc = read_json_file(scene_path);
+    SceneDocument doc = SceneDocument::read(scene_path);
     for (const StudySetting& s : settings) {
-        for (const std::string& pointer : expand_wildcards(doc, s.pointer, scene_path)) {
+        for (const std::string& pointer : expand_wildcards(doc.json(), s.pointer, scene_path)) {
+            const Override o{pointer, s.value};
             if (s.merge) {
-                Json::json_pointer at;
-                try {
-                    at = Json::json_pointer(pointer);
-                } catch (const Json::exception&) {
-                    throw Error(ErrorKind::Usage, "--vary " + pointer + ": invalid JSON pointer");
-                }
-                if (doc.contains(at) && doc.at(at).is_object()) {
-                    doc.at(at).merge_patch(Json::parse(s.value));
+                const Json* at = doc.find(pointer);
+                if (at != nullptr && at->is_object()) {
+                    Json merged = *at;
+                    merged.merge_patch(override_value(o, scene_path));
+                    doc.set(pointer, std::move(merged));
                     continue;
                 }
             }
-            if (doc.is_object())
-                create_parents(doc, pointer);
-            apply_overrides(doc, {Override{pointer, s.value}}, scene_path);
+            doc.set(pointer, override_value(o, scene_path), "--set");
         }
     }
-    return doc;
+    return std::move(doc.json());
 }
 
 StudyResult run_study(const StudySpec& spec, const std::function<void(const std::string&)>& log) {

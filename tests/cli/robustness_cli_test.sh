@@ -97,6 +97,22 @@ bad 3 "truncated.json: invalid JSON: parse error at line" plan "$s/truncated.jso
 bad 3 "binary.json: invalid JSON" render "$s/binary.json" -o "$out/a.exr" -q
 bad 3 "syntax.json: invalid JSON: parse error at line 1, column 22" check "$s/syntax.json"
 bad 3 "array.json: / = \[1,2\]: expected an object" check "$s/array.json"
+# Numbers beyond double range, keys given twice: the file, line and column, not an internal error.
+printf '{"film": {"width": 8,\n  "spp": 1e999}}\n' >"$s/overflow.json"
+printf '{"film": {"spp": -1e999}}\n' >"$s/negoverflow.json"
+printf '{"film": {"spp": 1},\n "camera": {},\n "film": {"spp": 2}}\n' >"$s/duplicate.json"
+bad 3 "overflow.json: invalid JSON: line 2, column 10: number 1e999 is out of range at /film/spp" check "$s/overflow.json"
+bad 3 "negoverflow.json: invalid JSON: line 1, column 18: number -1e999 is out of range at /film/spp" plan "$s/negoverflow.json"
+bad 3 "duplicate.json: invalid JSON: line 3, column 2: duplicate key \"film\" in /" check "$s/duplicate.json"
+for cmd in "render -o $out/a.exr -q" "probe radiance --origin 0,1,5 --direction 0,0,-1" "sequence --frames 0-1 -o $out/f.####.exr -q" \
+  "study --vary spp=1,2 -o $out/study"; do
+  set -- $cmd
+  sub="$1"
+  shift
+  [ "$sub" = probe ] && { sub="probe $1"; shift; }
+  # shellcheck disable=SC2086  # $sub is "probe radiance"
+  bad 3 "overflow.json: invalid JSON: line 2, column 10" $sub "$s/overflow.json" "$@"
+done
 if [ "$(id -u)" -ne 0 ]; then  # root reads anything
   cp "$s/all.json" "$s/unreadable.json" && chmod 000 "$s/unreadable.json"
   bad 3 "unreadable.json: cannot open file: Permission denied" check "$s/unreadable.json"
@@ -196,8 +212,11 @@ bad 3 "fog_sequence.json: /animate/~1lights~10~1intensity_cd/1/1 = \"x\": type m
 # --set and animate pointers.
 bad 2 "--set expects /json/pointer=VALUE" check "$s/all.json" --set film/width=3
 bad 2 "--set /film/~x: invalid JSON pointer" check "$s/all.json" --set '/film/~x=3'
-bad 3 "all.json: --set /nope/x: /nope does not exist in the scene" check "$s/all.json" --set /nope/x=3
-bad 3 "all.json: --set /shapes/9/radius: /shapes/9 does not exist" check "$s/all.json" --set /shapes/9/radius=3
+# A missing parent is created (like mkdir -p); the loader then names what it does not know.
+bad 3 "all.json: /nope = \\{\"x\":3\\}: unknown key \"nope\"" check "$s/all.json" --set /nope/x=3
+bad 3 "all.json: --set /shapes/9/radius: index 9 is past the end of /shapes \\(4 elements; - appends\\)" check "$s/all.json" --set /shapes/9/radius=3
+bad 3 "all.json: --set /film/spp: invalid JSON: line 1, column 1: number 1e999 is out of range" check "$s/all.json" --set /film/spp=1e999
+bad 3 "all.json: --set /film: invalid JSON: line 1, column 12: duplicate key \"spp\" in /" check "$s/all.json" --set '/film={"spp": 1, "spp": 2}'
 bad 3 "all.json: --set /shapes/x: \"x\" is not an array index" check "$s/all.json" --set /shapes/x=3
 bad 3 "all.json: --set /film/width/0: /film/width is not an object or array" check "$s/all.json" --set /film/width/0=3
 for a in '{"/nope/x": [[0, 1], [10, 2]]}|/animate/~1nope~1x = .*does not exist in the scene' \

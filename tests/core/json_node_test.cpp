@@ -29,6 +29,62 @@ TEST(JsonNode, ParseErrorNamesFile) {
               std::string::npos);
 }
 
+TEST(JsonText, OutOfRangeNumbersAreLocatedErrors) {
+    EXPECT_EQ(error_of([] { parse_json_text("{\n  \"film\": {\"spp\": 1e999}}", "s.json"); }),
+              "s.json: invalid JSON: line 2, column 19: number 1e999 is out of range at /film/spp "
+              "(a double holds magnitudes up to 1.8e308)");
+    EXPECT_EQ(error_of([] { parse_json_text("[1, -1e999]", "s.json"); }),
+              "s.json: invalid JSON: line 1, column 5: number -1e999 is out of range at /1 (a "
+              "double holds magnitudes up to 1.8e308)");
+    const std::string digits(400, '9');  // an integer beyond any integer type and double
+    EXPECT_NE(error_of([&] {
+                  parse_json_text("{\"a\": " + digits + "}", "s.json");
+              }).find("s.json: invalid JSON: line 1, column 7: number 999"),
+              std::string::npos);
+    // Below the smallest double a number rounds to zero: not an error.
+    EXPECT_EQ(parse_json_text("[1e-999]", "s.json")[0].get<double>(), 0.0);
+    EXPECT_EQ(parse_json_text("[1.7e308]", "s.json")[0].get<double>(), 1.7e308);
+}
+
+TEST(JsonText, DuplicateKeysAreLocatedErrors) {
+    EXPECT_EQ(error_of([] {
+                  parse_json_text("{\"film\": {\"spp\": 1,\n /* c \" */ \"spp\": 2}}", "s.json");
+              }),
+              "s.json: invalid JSON: line 2, column 12: duplicate key \"spp\" in /film (each key "
+              "may appear once in an object)");
+    EXPECT_EQ(
+        error_of([] { parse_json_text(R"({"a": 1, "b": [{}], "a\u0000": 2, "a": 3})", "s.json"); }),
+        "s.json: invalid JSON: line 1, column 35: duplicate key \"a\" in / (each key may "
+        "appear once in an object)");
+    EXPECT_NE(error_of([] {
+                  parse_json_text(R"({"x": [{"k\"": 1, "k\"": 2}]})", "s.json");
+              }).find("column 19: duplicate key \"k\"\" in /x/0"),
+              std::string::npos);
+    // The same key in different objects is fine.
+    const Json j = parse_json_text(R"({"a": {"k": 1}, "b": {"k": 2}})", "s.json");
+    EXPECT_EQ(j["b"]["k"], 2);
+}
+
+TEST(JsonText, NestingIsLimited) {
+    const std::string deep = std::string(kMaxJsonDepth, '[') + std::string(kMaxJsonDepth, ']');
+    EXPECT_EQ(error_of([&] { parse_json_text(deep, "s.json"); }), "");
+    const std::string deeper = "{\"a\":\n" + std::string(kMaxJsonDepth, '[') + "{}" +
+                               std::string(kMaxJsonDepth, ']') + "}";
+    EXPECT_EQ(error_of([&] { parse_json_text(deeper, "s.json"); }),
+              "s.json: invalid JSON: line 2, column 256: nested deeper than 256 levels");
+}
+
+TEST(JsonText, SyntaxErrorsKeepTheParsersPosition) {
+    EXPECT_EQ(error_of([] { parse_json_text("{\"film\": {\"width\": 8,}}", "s.json"); }),
+              "s.json: invalid JSON: parse error at line 1, column 22: syntax error while parsing "
+              "object key - unexpected '}'; expected string literal");
+    EXPECT_EQ(parse_json_if_json("not json", "v"), std::nullopt);
+    EXPECT_EQ(parse_json_if_json("[1, // c\n 2]", "v"), std::nullopt);  // no comments
+    EXPECT_EQ(*parse_json_if_json("[1, 2]", "v"), Json::parse("[1, 2]"));
+    EXPECT_NE(error_of([] { parse_json_if_json("[1e999]", "--set /x"); }).find("--set /x: "),
+              std::string::npos);
+}
+
 TEST(JsonNode, RangeErrorNamesFileAndPointer) {
     const Json j = parse_json_text(R"({"media": [{"phase": {"g": 1.2}}]})", "scene.json");
     const JsonNode root(j, "scene.json");

@@ -9,19 +9,18 @@
 namespace kasumi {
 namespace {
 
-Json doc(const std::string& text) {
-    return parse_json_text(text, "anim.json");
+SceneDocument doc(const std::string& text) {
+    return SceneDocument(parse_json_text(text, "anim.json"), "anim.json");
 }
 
-Json value_at(const Json& root, int64_t frame, const std::string& pointer) {
-    return frame_document(root, parse_animation(root, "anim.json"), frame)
-        .at(Json::json_pointer(pointer));
+Json value_at(const SceneDocument& root, int64_t frame, const std::string& pointer) {
+    return frame_document(root, parse_animation(root), frame).get(pointer);
 }
 
 /// The message of the input error parse_animation throws ("" if none).
 std::string animation_error(const std::string& text) {
     try {
-        parse_animation(doc(text), "anim.json");
+        parse_animation(doc(text));
     } catch (const Error& e) {
         EXPECT_EQ(e.kind(), ErrorKind::Input);
         return e.what();
@@ -34,7 +33,7 @@ const char* kSun = R"({"sun": {"elevation_deg": 3, "datetime": "2026-06-21T18:00
     "animate": {"/sun/elevation_deg": [[0, 10], [240, -6]]}})";
 
 TEST(Animation, NumbersInterpolateLinearlyBetweenKeys) {
-    const Json root = doc(kSun);
+    const SceneDocument root = doc(kSun);
     // 10 + (-6 - 10) f / 240 at f = 0, 15, 60, 120, 180, 240: all exact in binary.
     EXPECT_EQ(value_at(root, 0, "/sun/elevation_deg").get<double>(), 10.0);
     EXPECT_EQ(value_at(root, 15, "/sun/elevation_deg").get<double>(), 9.0);
@@ -46,7 +45,7 @@ TEST(Animation, NumbersInterpolateLinearlyBetweenKeys) {
 }
 
 TEST(Animation, ValuesHoldOutsideTheKeyedRange) {
-    const Json root = doc(R"({"x": 0, "animate": {"/x": [[10, 4.5], [20, 8.5]]}})");
+    const SceneDocument root = doc(R"({"x": 0, "animate": {"/x": [[10, 4.5], [20, 8.5]]}})");
     EXPECT_EQ(value_at(root, -3, "/x").get<double>(), 4.5);
     EXPECT_EQ(value_at(root, 0, "/x").get<double>(), 4.5);
     EXPECT_EQ(value_at(root, 10, "/x").get<double>(), 4.5);
@@ -56,14 +55,15 @@ TEST(Animation, ValuesHoldOutsideTheKeyedRange) {
 }
 
 TEST(Animation, PiecewiseLinearThroughEveryKey) {
-    const Json root = doc(R"({"x": 0, "animate": {"/x": [[0, 0], [4, 8], [6, 2], [10, 2]]}})");
+    const SceneDocument root =
+        doc(R"({"x": 0, "animate": {"/x": [[0, 0], [4, 8], [6, 2], [10, 2]]}})");
     const double expected[] = {0, 2, 4, 6, 8, 5, 2, 2, 2, 2, 2};
     for (int f = 0; f <= 10; ++f)
         EXPECT_EQ(value_at(root, f, "/x").get<double>(), expected[f]) << "frame " << f;
 }
 
 TEST(Animation, IntegerKeysGiveIntegersWhereExact) {
-    const Json root = doc(R"({"n": 1, "animate": {"/n": [[0, 1], [2, 3], [5, 4]]}})");
+    const SceneDocument root = doc(R"({"n": 1, "animate": {"/n": [[0, 1], [2, 3], [5, 4]]}})");
     EXPECT_TRUE(value_at(root, 1, "/n").is_number_integer());
     EXPECT_EQ(value_at(root, 1, "/n").get<int64_t>(), 2);
     const Json third = value_at(root, 3, "/n");
@@ -72,7 +72,7 @@ TEST(Animation, IntegerKeysGiveIntegersWhereExact) {
 }
 
 TEST(Animation, ArraysInterpolateElementwise) {
-    const Json root = doc(R"({"camera": {"position": [0, 1, 2]},
+    const SceneDocument root = doc(R"({"camera": {"position": [0, 1, 2]},
                 "animate": {"/camera/position": [[0, [0, 1, 2]], [10, [10, -1, 2.5]]]}})");
     const Json p = value_at(root, 5, "/camera/position");
     ASSERT_EQ(p.size(), 3u);
@@ -103,7 +103,7 @@ TEST(Animation, DatetimesParseToKnownInstants) {
 }
 
 TEST(Animation, DatetimesInterpolateInTime) {
-    const Json root = doc(R"({"sun": {"datetime": "2026-06-21T18:00:00+02:00"},
+    const SceneDocument root = doc(R"({"sun": {"datetime": "2026-06-21T18:00:00+02:00"},
         "animate": {"/sun/datetime": [[0, "2026-06-21T18:00:00+02:00"],
                                       [240, "2026-06-21T20:00:00+02:00"]]}})");
     EXPECT_EQ(value_at(root, -1, "/sun/datetime"), "2026-06-21T18:00:00+02:00");
@@ -116,43 +116,44 @@ TEST(Animation, DatetimesInterpolateInTime) {
 
 TEST(Animation, DatetimesCrossMidnightYearsAndOffsets) {
     // One hour over three frames: 20 minutes a frame, across a year boundary.
-    const Json root = doc(R"({"t": "2026-12-31T23:30:00Z",
+    const SceneDocument root = doc(R"({"t": "2026-12-31T23:30:00Z",
         "animate": {"/t": [[0, "2026-12-31T23:30:00Z"], [3, "2027-01-01T00:30:00Z"]]}})");
     EXPECT_EQ(value_at(root, 1, "/t"), "2026-12-31T23:50:00Z");
     EXPECT_EQ(value_at(root, 2, "/t"), "2027-01-01T00:10:00Z");
     // Keys in different offsets: the same instants, written in the earlier key's offset.
-    const Json dst = doc(R"({"t": "2026-03-29T00:00:00+01:00",
+    const SceneDocument dst = doc(R"({"t": "2026-03-29T00:00:00+01:00",
         "animate": {"/t": [[0, "2026-03-29T00:00:00+01:00"], [4, "2026-03-29T05:00:00+02:00"]]}})");
     EXPECT_EQ(value_at(dst, 2, "/t"), "2026-03-29T02:00:00+01:00");
     // Seven frames an hour: fractions of a second are kept to the millisecond.
-    const Json sevenths = doc(R"({"t": "2026-06-21T18:00:00Z",
+    const SceneDocument sevenths = doc(R"({"t": "2026-06-21T18:00:00Z",
         "animate": {"/t": [[0, "2026-06-21T18:00:00Z"], [7, "2026-06-21T19:00:00Z"]]}})");
     EXPECT_EQ(value_at(sevenths, 1, "/t"), "2026-06-21T18:08:34.286Z");
 }
 
 TEST(Animation, FrameDocumentReplacesOnlyAnimatedValues) {
-    const Json root = doc(kSun);
-    const Json frame = frame_document(root, parse_animation(root, "anim.json"), 120);
+    const SceneDocument root = doc(kSun);
+    const Json frame = frame_document(root, parse_animation(root), 120).json();
     EXPECT_FALSE(frame.contains("animate"));
-    Json expected = root;
+    Json expected = root.json();
     expected.erase("animate");
     expected["sun"]["elevation_deg"] = 2;
     EXPECT_EQ(frame, expected);
 }
 
 TEST(Animation, SceneWithoutAnimateIsUnchanged) {
-    Json root = doc(R"({"camera": {"position": [0, 1, 2]}, "film": {"spp": 3}})");
-    const Json before = root;
-    EXPECT_TRUE(parse_animation(root, "anim.json").empty());
-    apply_animation(root, 17, "anim.json");
-    EXPECT_EQ(root, before);
+    SceneDocument root = doc(R"({"camera": {"position": [0, 1, 2]}, "film": {"spp": 3}})");
+    const Json before = root.json();
+    EXPECT_TRUE(parse_animation(root).empty());
+    apply_animation(root, 17);
+    EXPECT_EQ(root.json(), before);
 }
 
 TEST(Animation, AnimatedLightReachesTheParsedScene) {
-    Json root = doc(R"({"lights": [{"type": "point", "position": [0, 1, 0], "intensity_cd": 100}],
+    SceneDocument root =
+        doc(R"({"lights": [{"type": "point", "position": [0, 1, 0], "intensity_cd": 100}],
         "animate": {"/lights/0/intensity_cd": [[0, 100], [10, 200]]}})");
-    apply_animation(root, 5, "anim.json");
-    const SceneDesc scene = parse_scene(root, "anim.json");
+    apply_animation(root, 5);
+    const SceneDesc scene = parse_scene(root.json(), "anim.json");
     ASSERT_EQ(scene.lights.size(), 1u);
     EXPECT_FLOAT_EQ(std::get<PointLight>(scene.lights[0].emitter).intensity.g, 150.0f);
 }

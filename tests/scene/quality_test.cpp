@@ -13,8 +13,8 @@
 namespace kasumi {
 namespace {
 
-Json doc_with(const std::string& text) {
-    return parse_json_text(text, "test.json");
+SceneDocument doc_with(const std::string& text) {
+    return SceneDocument(parse_json_text(text, "test.json"), "test.json");
 }
 
 TEST(Quality, NamesRoundTrip) {
@@ -39,7 +39,7 @@ TEST(Quality, LevelsGrowMonotonically) {
 }
 
 TEST(Quality, FillsOnlyUnsetKeys) {
-    Json doc = doc_with(R"({
+    SceneDocument doc = doc_with(R"({
       "film": {"width": 8},
       "lights": [{"type": "point", "position": [0, 1, 0], "intensity_cd": 1},
                  {"type": "sphere", "center": [0, 2, 0], "radius": 0.1, "luminance_cd_m2": 1},
@@ -48,15 +48,15 @@ TEST(Quality, FillsOnlyUnsetKeys) {
       "media": [{"type": "homogeneous", "sigma_a": 0.1, "sigma_s": 0.1}],
       "render": {"quality": "final", "volume": {"step_m": 0.7}}
     })");
-    const QualityChoice c = apply_quality(doc, "test.json");
+    const QualityChoice c = apply_quality(doc);
     const QualityPreset& p = quality_preset(QualityLevel::Final);
     ASSERT_EQ(c.level, QualityLevel::Final);
-    EXPECT_EQ(doc["film"]["spp"].get<int>(), p.spp);
-    EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(), 0.7);  // the scene's wins
-    EXPECT_FALSE(doc["lights"][0].contains("samples"));               // delta light
-    EXPECT_EQ(doc["lights"][1]["samples"].get<int>(), p.light_samples);
-    EXPECT_EQ(doc["lights"][2]["samples"].get<int>(), 3);         // the scene's wins
-    EXPECT_FALSE(doc["render"]["volume"].contains("estimator"));  // no grid
+    EXPECT_EQ(doc.json()["film"]["spp"].get<int>(), p.spp);
+    EXPECT_EQ(doc.json()["render"]["volume"]["step_m"].get<double>(), 0.7);  // the scene's wins
+    EXPECT_FALSE(doc.json()["lights"][0].contains("samples"));               // delta light
+    EXPECT_EQ(doc.json()["lights"][1]["samples"].get<int>(), p.light_samples);
+    EXPECT_EQ(doc.json()["lights"][2]["samples"].get<int>(), 3);         // the scene's wins
+    EXPECT_FALSE(doc.json()["render"]["volume"].contains("estimator"));  // no grid
     EXPECT_EQ(c.kept.size(), 2u);
 }
 
@@ -67,30 +67,32 @@ TEST(Quality, FillsOnlyUnsetKeys) {
 TEST(Quality, HeightFogTakesItsOwnStepAndEstimator) {
     const std::string fog = R"({"type": "height_fog", "sigma_s": 0.1, "scale_height_m": 5})";
     const QualityPreset& p = quality_preset(QualityLevel::Default);
-    Json doc = doc_with(R"({"media": [)" + fog + R"(], "render": {"quality": "default"}})");
-    QualityChoice c = apply_quality(doc, "test.json");
-    EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(), p.height_fog_step_m);
-    EXPECT_EQ(doc["render"]["volume"]["estimator"].get<std::string>(), p.height_fog_estimator);
+    SceneDocument doc =
+        doc_with(R"({"media": [)" + fog + R"(], "render": {"quality": "default"}})");
+    QualityChoice c = apply_quality(doc);
+    EXPECT_EQ(doc.json()["render"]["volume"]["step_m"].get<double>(), p.height_fog_step_m);
+    EXPECT_EQ(doc.json()["render"]["volume"]["estimator"].get<std::string>(),
+              p.height_fog_estimator);
     EXPECT_EQ(std::string(p.height_fog_estimator), "march");
     EXPECT_NE(c.expected_error.find("height fog"), std::string::npos) << c.expected_error;
 
     doc = doc_with(R"({"media": [)" + fog +
                    R"(], "render": {"quality": "draft", "volume": {"estimator": "ratio"}}})");
-    c = apply_quality(doc, "test.json");
-    EXPECT_EQ(doc["render"]["volume"]["estimator"].get<std::string>(), "ratio");
+    c = apply_quality(doc);
+    EXPECT_EQ(doc.json()["render"]["volume"]["estimator"].get<std::string>(), "ratio");
     EXPECT_EQ(c.kept, std::vector<std::string>{"/render/volume/estimator"});
 
     doc =
         doc_with(R"({"media": [)" + fog +
                  R"(, {"type": "homogeneous", "sigma_s": 0.1}], "render": {"quality": "final"}})");
-    apply_quality(doc, "test.json");
-    EXPECT_EQ(doc["render"]["volume"]["step_m"].get<double>(),
+    apply_quality(doc);
+    EXPECT_EQ(doc.json()["render"]["volume"]["step_m"].get<double>(),
               quality_preset(QualityLevel::Final).fog_step_m);
 
     doc = doc_with(R"({"media": [)" + fog +
                    R"(, {"type": "vdb", "file": "x.vdb"}], "render": {"quality": "final"}})");
-    apply_quality(doc, "test.json");
-    EXPECT_EQ(doc["render"]["volume"]["estimator"].get<std::string>(),
+    apply_quality(doc);
+    EXPECT_EQ(doc.json()["render"]["volume"]["estimator"].get<std::string>(),
               quality_preset(QualityLevel::Final).grid_estimator);
 }
 
@@ -100,7 +102,8 @@ TEST(Quality, PlanNamesTheHeightFogChoice) {
     const SceneDesc desc = parse_scene(doc_with(R"({
       "lights": [{"type": "directional", "direction": [0, -1, 0], "illuminance_lux": 1}],
       "media": [{"type": "height_fog", "sigma_a": 0.0, "sigma_s": 0.1, "scale_height_m": 5}],
-      "render": {"quality": "draft"}})"),
+      "render": {"quality": "draft"}})")
+                                           .json(),
                                        "test.json");
     const Plan plan = make_plan(desc);
     std::string quality, in_scattering;
@@ -118,17 +121,18 @@ TEST(Quality, PlanNamesTheHeightFogChoice) {
 }
 
 TEST(Quality, AbsentLevelChangesNothing) {
-    Json doc = doc_with(R"({"render": {"seed": 1}})");
-    const Json before = doc;
-    const QualityChoice c = apply_quality(doc, "test.json");
+    SceneDocument doc = doc_with(R"({"render": {"seed": 1}})");
+    const Json before = doc.json();
+    const QualityChoice c = apply_quality(doc);
     EXPECT_FALSE(c.level.has_value());
-    EXPECT_EQ(doc, before);
+    EXPECT_EQ(doc.json(), before);
 }
 
 TEST(Quality, UnknownLevelIsALocatedInputError) {
-    Json doc = doc_with(R"({"render": {"quality": "ultra"}})");
+    SceneDocument doc(parse_json_text(R"({"render": {"quality": "ultra"}})", "scene.json"),
+                      "scene.json");
     try {
-        apply_quality(doc, "scene.json");
+        apply_quality(doc);
         FAIL() << "no error";
     } catch (const Error& e) {
         EXPECT_EQ(e.kind(), ErrorKind::Input);
@@ -138,10 +142,10 @@ TEST(Quality, UnknownLevelIsALocatedInputError) {
 
 TEST(Quality, SceneLoaderAppliesTheLevel) {
     const std::string scene = R"({"render": {"quality": "draft"}, "film": {"width": 4}})";
-    const SceneDesc desc = parse_scene(doc_with(scene), "test.json");
+    const SceneDesc desc = parse_scene(doc_with(scene).json(), "test.json");
     EXPECT_EQ(desc.film.spp, quality_preset(QualityLevel::Draft).spp);
     const SceneDesc given = parse_scene(
-        doc_with(R"({"render": {"quality": "draft"}, "film": {"spp": 7}})"), "test.json");
+        doc_with(R"({"render": {"quality": "draft"}, "film": {"spp": 7}})").json(), "test.json");
     EXPECT_EQ(given.film.spp, 7);
 }
 
@@ -180,8 +184,8 @@ TEST(ScatteringBound, ChoosesSingleOnlyWithinTolerance) {
     const std::vector<Medium> thin{box_medium(0.3f, Rgb(0.01f), Rgb(0.1f))};    // B ~ 0.02
     const std::vector<Medium> thick{box_medium(30.0f, Rgb(0.01f), Rgb(0.5f))};  // B ~ 40
     auto choose = [](const char* doc_text, const std::vector<Medium>& media) {
-        Json doc = parse_json_text(doc_text, "t.json");
-        QualityChoice c = apply_quality(doc, "t.json");
+        SceneDocument doc(parse_json_text(doc_text, "t.json"), "t.json");
+        QualityChoice c = apply_quality(doc);
         VolumeIntegrator integrator = VolumeIntegrator::Single;
         choose_integrator(doc, media, integrator, c);
         return integrator;

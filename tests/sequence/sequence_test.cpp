@@ -218,9 +218,7 @@ TEST(Sequence, OneFrameAloneIsBitIdenticalToTheSameFrameOfAWholeRun) {
     expect_same_pixels(from_whole, read_exr(frame_path(single.output_pattern, 7)), "--frame 7");
 
     // What `kasumi render SCENE --frame 7` does: the frame's document, the frame's RNG key.
-    Json doc = read_json_file(kFogSequence);
-    doc = animated_document(doc, whole.overrides, 7, kFogSequence);
-    const SceneRuntime runtime(parse_scene(doc, kFogSequence));
+    const SceneRuntime runtime(load_scene(kFogSequence, whole.overrides, 7));
     RenderOptions render_options;
     render_options.frame = 7;
     render_options.progress = false;
