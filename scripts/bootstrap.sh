@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# One entry point for a fresh Debian 12 machine (run as root from anywhere):
-#   scripts/bootstrap.sh render  install packages, build Release, render the default scene
-#                                to out/default.exr and out/default.png
+# One entry point for a fresh Debian 12 machine (run from anywhere):
+#   scripts/bootstrap.sh render  install packages, build the kasumi program (Release; no tests,
+#                                no benchmarks), render the default scene to out/default.exr
+#                                and out/default.png
 #   scripts/bootstrap.sh test    install packages, build Release with -Werror and run every
 #                                test, then build with ASan+UBSan and run the unit tests
-# Package installation is idempotent: only missing packages are installed.
+# Package installation is idempotent: only missing packages are installed. As root they are
+# installed with apt-get; otherwise through `sudo -n` (never a password prompt); without root
+# or sudo the script prints the `sudo apt-get install ...` line to run and exits 1.
 set -euo pipefail
 
 mode="${1:-}"
@@ -31,10 +34,21 @@ install_packages() {
     echo "bootstrap: all ${#packages[@]} packages present"
     return
   fi
+  local as_root=()
+  if [ "$(id -u)" -ne 0 ]; then
+    # A non-interactive sudo only: a password prompt would hang CI and scripted set-ups.
+    if command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+      as_root=(sudo -n)
+    else
+      echo "bootstrap: missing packages; install them as root, then run this again:" >&2
+      echo "  sudo apt-get install --no-install-recommends ${missing[*]}" >&2
+      exit 1
+    fi
+  fi
   echo "bootstrap: installing ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -q
-  apt-get install -y -q --no-install-recommends "${missing[@]}"
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -q --no-install-recommends "${missing[@]}"
 }
 
 build() {  # build PRESET
