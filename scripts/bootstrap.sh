@@ -21,6 +21,7 @@ packages=(
   libembree-dev libtbb-dev libopenexr-dev libopencolorio-dev opencolorio-tools
   libglm-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 install_packages() {
