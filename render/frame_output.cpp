@@ -83,9 +83,8 @@ std::vector<ExrChannelView> image_channel_views(const Image& image, ExrPixelType
 
 ExrWriteReport write_frame_files(const Image& header, const std::vector<ExrChannelView>& channels,
                                  const FrameFiles& files) {
-    make_parent_dirs(files.exr);
-    const ExrWriteReport report =
-        write_exr(header, channels, files.exr, files.compression, files.threads);
+    // The preview first, the EXR last: an EXR on disk means the whole frame was written
+    // (`sequence --skip-existing` and the Slurm scripts skip frames by their EXR).
     if (!files.preview.empty()) {
         make_parent_dirs(files.preview);
         if (!header.channels.empty()) {
@@ -100,7 +99,8 @@ ExrWriteReport write_frame_files(const Image& header, const std::vector<ExrChann
             write_preview_png(rgb, files.preview, files.preview_settings);
         }
     }
-    return report;
+    make_parent_dirs(files.exr);
+    return write_exr(header, channels, files.exr, files.compression, files.threads);
 }
 
 ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResult& result,

@@ -58,10 +58,10 @@ struct FrameFiles {
     int threads = 0;  ///< threads compressing the EXR (0: one per hardware thread)
 };
 
-/// Creates parent directories, then writes the EXR of `channels` (R, G, B, A first, then AOVs;
-/// `header` gives size and metadata) and, when files.preview is set, the preview PNG of R, G, B
-/// (`header`'s own R, G, B channels if it has them, else copied from `channels`). Both atomic.
-/// Returns what the half conversion did.
+/// Creates parent directories, then writes, when files.preview is set, the preview PNG of R, G, B
+/// (`header`'s own R, G, B channels if it has them, else copied from `channels`) and last the
+/// EXR of `channels` (R, G, B, A first, then AOVs; `header` gives size and metadata), so an EXR
+/// on disk means the frame is complete. Both atomic. Returns what the half conversion did.
 ExrWriteReport write_frame_files(const Image& header, const std::vector<ExrChannelView>& channels,
                                  const FrameFiles& files);
 
