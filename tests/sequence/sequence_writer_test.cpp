@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <future>
 #include <vector>
 
 namespace kasumi {
@@ -43,9 +44,16 @@ TEST(SequenceWriter, DestructorRunsWhatIsQueued) {
 
 TEST(SequenceWriter, FirstFailureIsRethrownAndLaterTasksAreDropped) {
     std::vector<int> done;
+    // The first task holds the worker until all six are queued: without the gate the worker may
+    // reach task 2 while the loop still submits, and submit() then rethrows (correctly, but
+    // not what this test is about).
+    std::promise<void> all_queued;
+    std::shared_future<void> gate = all_queued.get_future().share();
     SequenceWriter writer(8);
     for (int i = 0; i < 6; ++i) {
-        writer.submit([&done, i] {
+        writer.submit([&done, i, gate] {
+            if (i == 0)
+                gate.wait();
             if (i == 2)
                 throw_output_error("out/f.0002.exr: disk full");
             if (i == 4)
@@ -53,6 +61,7 @@ TEST(SequenceWriter, FirstFailureIsRethrownAndLaterTasksAreDropped) {
             done.push_back(i);
         });
     }
+    all_queued.set_value();
     try {
         writer.finish();
         ADD_FAILURE() << "finish() did not rethrow the failure";
