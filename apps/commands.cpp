@@ -8,6 +8,7 @@
 #include "gi/gi.h"
 #include "render/frame_output.h"
 #include "render/probe.h"
+#include "render/probe_json.h"
 #include "render/renderer.h"
 #include "sequence/sequence_cache.h"
 #include "volume/transmittance.h"
@@ -39,10 +40,6 @@ extern "C" void on_signal(int signal) {
 
 void print_json(const Json& j) {
     std::cout << j.dump(2) << std::endl;
-}
-
-Json rgb_json(const Rgb& c) {
-    return Json::array({c.r, c.g, c.b});
 }
 
 }  // namespace
@@ -278,10 +275,7 @@ void add_probe_command(CLI::App& root) {
         const SceneRuntime runtime(options->scene.load(), make_gi_method);
         const int spp = options->spp > 0 ? options->spp : runtime.desc().film.spp;
         const RadianceProbe p = probe_radiance(runtime, origin, direction, spp);
-        print_json(Json{{"radiance", rgb_json(p.radiance)},
-                        {"stderr", rgb_json(p.stderr_)},
-                        {"luminance_cd_m2", p.luminance_cd_m2},
-                        {"samples", p.samples}});
+        print_json(probe_json(p));
     });
 
     struct TransmittanceOptions {
@@ -316,10 +310,7 @@ void add_probe_command(CLI::App& root) {
         const Estimator chosen = estimator ? *estimator : runtime.desc().render.volume.estimator;
         const TransmittanceProbe p =
             probe_transmittance(runtime, from, to, chosen, t_options->samples);
-        print_json(Json{{"transmittance", rgb_json(p.transmittance)},
-                        {"stderr", rgb_json(p.stderr_)},
-                        {"estimator", estimator_name(chosen)},
-                        {"samples", p.samples}});
+        print_json(probe_json(p, chosen));
     });
 }
 

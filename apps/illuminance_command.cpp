@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "gi/gi.h"
 #include "render/illuminance.h"
+#include "render/probe_json.h"
 
 #include <iostream>
 #include <memory>
@@ -53,17 +54,7 @@ void add_illuminance_command(CLI::App& probe) {
         const SceneRuntime runtime(options->scene.load(), make_gi_method);
         const IlluminanceProbe p = probe_illuminance(runtime, at, glm::normalize(normal),
                                                      !options->no_shadows, options->samples);
-        Json per_light = Json::array();
-        for (const LightIlluminance& l : p.per_light) {
-            Json entry{
-                {"name", l.name}, {"lux", l.lux}, {"method", illuminance_method_name(l.method)}};
-            if (l.method == IlluminanceMethod::Sampled) {
-                entry["stderr"] = l.stderr_lux;
-                entry["samples"] = l.samples;
-            }
-            per_light.push_back(entry);
-        }
-        std::cout << Json{{"lux", p.lux}, {"per_light", per_light}}.dump(2) << std::endl;
+        std::cout << probe_json(p).dump(2) << std::endl;
     });
 }
 

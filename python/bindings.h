@@ -3,6 +3,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cstddef>
+#include <string>
 
 namespace kasumi::python {
 
@@ -12,5 +13,13 @@ inline constexpr std::ptrdiff_t kReleaseGilFrom = 4096;
 
 void bind_phase(pybind11::module_& phase);
 void bind_mie(pybind11::module_& mie);
+/// kasumi.Scene and kasumi.RenderResult, on the package itself.
+void bind_scene(pybind11::module_& m);
+/// kasumi.read_exr.
+void bind_exr(pybind11::module_& m);
+
+/// Raises FileNotFoundError (OSError, errno ENOENT) for a path that does not exist: the library
+/// reports it as an input error, Python code expects the OSError.
+void raise_if_missing(const std::string& path);
 
 }  // namespace kasumi::python

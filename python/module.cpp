@@ -1,5 +1,5 @@
-/// The `kasumi._kasumi` extension: kasumi.phase and kasumi.mie over the same library as the
-/// CLI, and the error types. kasumi/__init__.py re-exports it.
+/// The `kasumi._kasumi` extension: kasumi.Scene, kasumi.phase and kasumi.mie over the same
+/// library as the CLI, and the error types. kasumi/__init__.py re-exports it.
 #include "bindings.h"
 
 #include "core/error.h"
@@ -7,7 +7,9 @@
 namespace py = pybind11;
 
 PYBIND11_MODULE(_kasumi, m) {
-    m.doc() = "kasumi: phase functions, Lorenz-Mie theory and their validation";
+    m.doc() =
+        "kasumi: scenes, renders and probes; phase functions, Lorenz-Mie theory and their "
+        "validation";
     // Input errors carry the CLI's located message ("phase: /g = 1.2: must be in (-1, 1)").
     static py::exception<kasumi::Error> scene_error(m, "SceneError", PyExc_ValueError);
     py::register_exception_translator([](std::exception_ptr p) {
@@ -35,4 +37,6 @@ PYBIND11_MODULE(_kasumi, m) {
     kasumi::python::bind_phase(phase);
     py::module_ mie = m.def_submodule("mie", "Lorenz-Mie theory of spheres (Bohren & Huffman)");
     kasumi::python::bind_mie(mie);
+    kasumi::python::bind_scene(m);
+    kasumi::python::bind_exr(m);
 }

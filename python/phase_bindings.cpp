@@ -1,6 +1,7 @@
 /// kasumi.phase: every phase model by its scene-file name and parameters, evaluated, sampled
 /// and validated on NumPy arrays by the library's own functions.
 #include "bindings.h"
+#include "json_bridge.h"
 
 #include "core/json_node.h"
 #include "phase/phase_json.h"
@@ -32,8 +33,7 @@ struct Phase {
 /// "<source>: <pointer>/g = 1.2: must be in (-1, 1)".
 Phase make_phase(const py::dict& description, const std::string& source,
                  const std::string& pointer) {
-    const std::string text = py::str(py::module_::import("json").attr("dumps")(description));
-    const Json json = Json::parse(text);
+    const Json json = to_json(description, source);
     Phase p{parse_phase(JsonNode(json, source, pointer)), ""};
     p.name = phase_model_name(p.model);
     return p;

@@ -81,24 +81,34 @@ std::vector<ExrChannelView> image_channel_views(const Image& image, ExrPixelType
     return views;
 }
 
+namespace {
+
+/// The preview PNG of `header` (its own R, G, B channels if it has them, else copied from
+/// `channels`), its directories created first.
+void write_preview(const Image& header, const std::vector<ExrChannelView>& channels,
+                   const std::string& path, const PreviewSettings& settings) {
+    make_parent_dirs(path);
+    if (!header.channels.empty()) {
+        write_preview_png(header, path, settings);
+        return;
+    }
+    Image rgb(header.width, header.height);
+    const size_t pixels = static_cast<size_t>(header.width) * header.height;
+    for (size_t i = 0; i < 3 && i < channels.size(); ++i) {  // R, G, B
+        const float* from = channels[i].data;
+        rgb.channels.push_back({channels[i].name, std::vector<float>(from, from + pixels)});
+    }
+    write_preview_png(rgb, path, settings);
+}
+
+}  // namespace
+
 ExrWriteReport write_frame_files(const Image& header, const std::vector<ExrChannelView>& channels,
                                  const FrameFiles& files) {
     // The preview first, the EXR last: an EXR on disk means the whole frame was written
     // (`sequence --skip-existing` and the Slurm scripts skip frames by their EXR).
-    if (!files.preview.empty()) {
-        make_parent_dirs(files.preview);
-        if (!header.channels.empty()) {
-            write_preview_png(header, files.preview, files.preview_settings);
-        } else {
-            Image rgb(header.width, header.height);
-            const size_t pixels = static_cast<size_t>(header.width) * header.height;
-            for (size_t i = 0; i < 3 && i < channels.size(); ++i) {  // R, G, B
-                const float* from = channels[i].data;
-                rgb.channels.push_back({channels[i].name, std::vector<float>(from, from + pixels)});
-            }
-            write_preview_png(rgb, files.preview, files.preview_settings);
-        }
-    }
+    if (!files.preview.empty())
+        write_preview(header, channels, files.preview, files.preview_settings);
     make_parent_dirs(files.exr);
     return write_exr(header, channels, files.exr, files.compression, files.threads);
 }
@@ -125,6 +135,15 @@ ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResul
     // Compressed with the render's own thread count (--threads 1: on this thread alone).
     files.threads = result.threads;
     return write_frame_files(header, channels, files);
+}
+
+void write_render_preview(const SceneRuntime& scene, const RenderResult& result,
+                          const std::string& path) {
+    std::vector<ExrChannelView> channels;
+    for (const FilmPlane& plane : result.film.planes(kAovNone))  // R, G, B, A
+        channels.push_back({plane.name, plane.data, ExrPixelType::Float});
+    write_preview(Image(result.film.width(), result.film.height()), channels, path,
+                  preview_settings(scene.desc()));
 }
 
 }  // namespace kasumi

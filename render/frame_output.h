@@ -76,4 +76,9 @@ ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResul
                                     const OutputPaths& paths, int64_t frame,
                                     const StageTimes& times = {});
 
+/// The preview PNG of a render alone, as write_render_outputs writes it beside the EXR: the
+/// film's R, G, B through the scene's render.preview view and exposure, written atomically.
+void write_render_preview(const SceneRuntime& scene, const RenderResult& result,
+                          const std::string& path);
+
 }  // namespace kasumi

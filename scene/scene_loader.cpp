@@ -212,7 +212,10 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCa
 }
 
 SceneSource::SceneSource(const std::string& path, std::vector<Override> overrides)
-    : m_overrides(std::move(overrides)), m_document(SceneDocument::read(path)) {
+    : SceneSource(SceneDocument::read(path), std::move(overrides)) {}
+
+SceneSource::SceneSource(SceneDocument document, std::vector<Override> overrides)
+    : m_overrides(std::move(overrides)), m_document(std::move(document)) {
     apply_overrides(m_document, m_overrides);
     m_animation = parse_animation(m_document);
 }

@@ -36,6 +36,9 @@ class SceneSource {
   public:
     /// Reads `path` and applies `overrides`, then reads "animate" (input errors name the file).
     SceneSource(const std::string& path, std::vector<Override> overrides = {});
+    /// The same from a document already read (the Python module's Scene.from_dict); its file()
+    /// names it in errors and its directory resolves relative file names.
+    SceneSource(SceneDocument document, std::vector<Override> overrides);
 
     /// The overridden document, "animate" still in it.
     const SceneDocument& document() const { return m_document; }
