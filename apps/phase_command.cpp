@@ -154,16 +154,23 @@ void add_mie(CLI::App& phase) {
 void add_validate(CLI::App& phase) {
     struct Options {
         std::unique_ptr<PhaseModelOptions> model;
-        std::string samples, seed;
+        std::string samples, seed, significance, n_tests;
     };
     auto options = std::make_shared<Options>();
     CLI::App* cmd = phase.add_subcommand(
         "validate",
-        "--model NAME [params] [--samples N] [--seed S]: property checks; exit 5 on failure");
+        "--model NAME [params] [--samples N] [--seed S] [--significance R] [--n-tests K]: "
+        "property checks; exit 5 on failure");
     options->model = std::make_unique<PhaseModelOptions>(*cmd);
     cmd->add_option("--samples", options->samples,
-                    "samples of the sampler checks, an integer in [1000, 1e9]");
-    cmd->add_option("--seed", options->seed, "random seed, a non-negative integer");
+                    "samples of the sampler checks, an integer in [1000, 1e9] (default 4e6)");
+    cmd->add_option("--seed", options->seed, "random seed, a non-negative integer (default 1)");
+    cmd->add_option("--significance", options->significance,
+                    "false-failure rate of the whole run of --n-tests statistical checks, in "
+                    "(0, 1) (default 1e-4)");
+    cmd->add_option("--n-tests", options->n_tests,
+                    "statistical checks sharing --significance (Sidak), e.g. one per model a "
+                    "script validates (default 1)");
     cmd->callback([options] {
         ValidationOptions validation;
         if (!options->samples.empty()) {
@@ -178,15 +185,30 @@ void add_validate(CLI::App& phase) {
                 usage_error("--seed must be a non-negative integer");
             validation.seed = static_cast<uint64_t>(n);
         }
+        if (!options->significance.empty()) {
+            const double r = require_number("significance", options->significance);
+            if (!(r > 0.0 && r < 1.0))
+                usage_error("--significance must be in (0, 1)");
+            validation.significance = r;
+        }
+        if (!options->n_tests.empty()) {
+            const double n = require_number("n-tests", options->n_tests);
+            if (!(n >= 1 && n <= 1e6) || n != std::floor(n))
+                usage_error("--n-tests must be an integer in [1, 1e6]");
+            validation.n_tests = static_cast<int>(n);
+        }
         const PhaseFunction p = build_model(options->model->single());
         const std::vector<PhaseCheck> checks = validate_phase(p, validation);
-        std::printf("%-16s %-6s %-22s %-22s %-12s %s\n", "check", "result", "value", "expected",
-                    "tolerance", "detail");
+        std::printf("decision rule: %s\n", decision_rule(validation).c_str());
+        std::printf("%-16s %-6s %-22s %-22s %-12s %-12s %s\n", "check", "result", "value",
+                    "expected", "tolerance", "p_value", "detail");
         bool all_passed = true;
         for (const PhaseCheck& c : checks) {
-            std::printf("%-16s %-6s %-22s %-22s %-12s %s\n", c.name.c_str(),
+            const std::string p_value = c.p_value ? number(*c.p_value) : "-";
+            std::printf("%-16s %-6s %-22s %-22s %-12s %-12s %s\n", c.name.c_str(),
                         c.passed ? "pass" : "FAIL", number(c.value).c_str(),
-                        number(c.expected).c_str(), number(c.tolerance).c_str(), c.detail.c_str());
+                        number(c.expected).c_str(), number(c.tolerance).c_str(), p_value.c_str(),
+                        c.detail.c_str());
             all_passed = all_passed && c.passed;
         }
         std::fflush(stdout);

@@ -74,12 +74,24 @@ expect_exit 3 "--m imaginary part must be >= 0" -- phase mie --x 3 --m 1.5,-0.1
 expect_exit 3 "--radius-um must be > 0" -- phase mie --radius-um 0 --m 1.5
 expect_exit 3 "size parameter must be in \(0, 1e5\]" -- phase mie --x 1e6 --m 1.5
 
-# validate: a table of checks, exit 0 when all pass (5 when one fails: no correct model fails
-# deterministically, and the chi-square check's chance failures are rarer than 1e-4 a run).
+# validate: the decision rule, then a table of checks with p-values; exit 0 when all pass, 5 when
+# one fails. No correct model fails deterministically at the default rate, so the failure is
+# forced by a run rate of 0.1: seed 2's chi-square p-value, 0.0304, is then below alpha = 0.1.
 expect_exit 0 "" -- phase validate --model hg --g 0.3 --samples 1000 --seed 3
-head -1 "$work/stdout" | grep -qE "^check +result +value +expected +tolerance +detail" ||
+head -1 "$work/stdout" | grep -qE "^decision rule: false-failure rate 0.0001 for the run, Sidak over 1 statistical check\(s\): a check fails when its p-value <= 0.0001; 1000 samples$" ||
+  fail "phase validate: decision rule line"
+sed -n 2p "$work/stdout" | grep -qE "^check +result +value +expected +tolerance +p_value +detail" ||
   fail "phase validate: header"
-grep -qE "^chi_square +pass" "$work/stdout" || fail "phase validate: chi_square row"
+grep -qE "^chi_square +pass +[0-9.e-]+ +1 +0.0001 +[0-9.e-]+ " "$work/stdout" ||
+  fail "phase validate: chi_square row with its p-value"
+grep -qE "^normalisation +pass +.* - +" "$work/stdout" || fail "phase validate: no p-value for a deterministic check"
+expect_exit 0 "" -- phase validate --model hg --g 0.3 --samples 100000 --seed 2 --n-tests 4
+head -1 "$work/stdout" | grep -q "Sidak over 4 statistical check(s): a check fails when its p-value <= 2.5e-05" ||
+  fail "phase validate: --n-tests splits the rate"
+expect_exit 5 "phase validate: hg failed at least one check" -- phase validate --model hg --g 0.3 --samples 100000 --seed 2 --significance 0.1
+grep -qE "^chi_square +FAIL +0.0304" "$work/stdout" || fail "phase validate: the failing row"
+expect_exit 2 "--significance must be in \(0, 1\)" -- phase validate --model hg --g 0.3 --significance 1
+expect_exit 2 "--n-tests must be an integer in \[1, 1e6\]" -- phase validate --model hg --g 0.3 --n-tests 0
 expect_exit 2 "--samples must be an integer in \[1000, 1e9\]" -- phase validate --model hg --g 0.3 --samples 10
 expect_exit 2 "--seed must be a non-negative integer" -- phase validate --model hg --g 0.3 --seed -1
 
