@@ -45,8 +45,9 @@ TEST(RenderedFrame, ViewsGroupThePlanesOfEachAov) {
     for (size_t i = 0; i < views.size(); ++i) {
         EXPECT_EQ(views[i].name, names[i]);
         EXPECT_EQ(views[i].channels, channels[i]) << names[i];
-        if (views[i].channels > 1)
+        if (views[i].channels > 1) {
             EXPECT_EQ(views[i].channel_stride_bytes, plane_bytes) << names[i];
+        }
     }
 }
 
