@@ -13,7 +13,8 @@ inline constexpr std::ptrdiff_t kReleaseGilFrom = 4096;
 
 void bind_phase(pybind11::module_& phase);
 void bind_mie(pybind11::module_& mie);
-/// kasumi.Scene and kasumi.RenderResult, on the package itself.
+/// kasumi.RenderResult, then kasumi.Scene (whose render returns one), on the package itself.
+void bind_render_result(pybind11::module_& m);
 void bind_scene(pybind11::module_& m);
 /// kasumi.read_exr.
 void bind_exr(pybind11::module_& m);

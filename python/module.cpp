@@ -37,6 +37,7 @@ PYBIND11_MODULE(_kasumi, m) {
     kasumi::python::bind_phase(phase);
     py::module_ mie = m.def_submodule("mie", "Lorenz-Mie theory of spheres (Bohren & Huffman)");
     kasumi::python::bind_mie(mie);
+    kasumi::python::bind_render_result(m);
     kasumi::python::bind_scene(m);
     kasumi::python::bind_exr(m);
 }
