@@ -4,7 +4,6 @@
 #include "json_bridge.h"
 #include "python/rendered_frame.h"
 
-#include "core/error.h"
 #include "gi/gi.h"
 #include "render/probe_json.h"
 
