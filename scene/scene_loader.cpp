@@ -59,6 +59,12 @@ FilmDesc parse_film(const JsonNode& node) {
         film.spp = parse_int_in(*v, 1, 1 << 20);
     if (auto v = reader.optional("jitter"))
         film.jitter = v->as_bool();
+    if (auto v = reader.optional("noise_threshold"))
+        film.noise_threshold = v->non_negative();
+    if (auto v = reader.optional("noise_floor_cd_m2"))
+        film.noise_floor_cd_m2 = v->positive();
+    if (auto v = reader.optional("min_spp"))
+        film.min_spp = parse_int_in(*v, 2, 1 << 20);
     if (auto v = reader.optional("pixel_type")) {
         if (!parse_exr_pixel_type(v->as_string(), film.pixel_type))
             v->fail("must be \"float\" or \"half\"");
