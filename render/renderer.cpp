@@ -2,6 +2,8 @@
 
 #include "core/progress.h"
 #include "render/adaptive_sampling.h"
+#include "render/camera_sample.h"
+#include "render/guiding_training.h"
 #include "render/integrator.h"
 
 #include <tbb/blocked_range.h>
@@ -21,28 +23,6 @@ namespace {
 bool is_finite_sample(const PixelSample& s) {
     return is_finite(s.radiance) && is_finite(s.surface) && is_finite(s.volume) &&
            is_finite(s.transmittance) && std::isfinite(s.depth);
-}
-
-}  // namespace
-
-namespace {
-
-/// The camera ray of sample `sample` of pixel (x, y) and the generator that continues it: both
-/// come from the key (pixel, sample, frame, seed).
-struct CameraSample {
-    Ray ray;
-    Pcg32 rng;
-};
-
-CameraSample camera_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame) {
-    Pcg32 rng = pixel_rng(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
-                          static_cast<uint32_t>(sample), frame, scene.desc().render.seed);
-    Vec2 jitter = rng.next_vec2();
-    if (!scene.desc().film.jitter)
-        jitter = Vec2(0.5f);
-    const Ray ray = scene.camera().generate_ray(static_cast<float>(x) + jitter.x,
-                                                static_cast<float>(y) + jitter.y);
-    return {ray, rng};
 }
 
 }  // namespace
@@ -72,6 +52,10 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
         stopped = true;
         return true;
     };
+    // Volume path guiding: the field is trained (deterministically) before the first tile.
+    GuidingField field;
+    PathGuiding guiding_state;
+    const PathGuiding* guiding = nullptr;
     auto render_tile = [&](int tile_index) {
         if (cancelled())
             return;
@@ -123,7 +107,7 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                     const size_t i = active[k];
                     const PixelSample p =
                         trace_camera_ray(scene, rays[k], samples[k].rng, local,
-                                         surfaces != nullptr ? &first_hits[k] : nullptr);
+                                         surfaces != nullptr ? &first_hits[k] : nullptr, guiding);
                     if (!is_finite_sample(p)) {
                         ++local.nonfinite_samples;
                         convergence[i].add(0.0);  // counted, as zero: the mean stays unbiased
@@ -165,6 +149,11 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
     arena.initialize();
     result.threads = arena.max_concurrency();
     arena.execute([&] {
+        if (guiding_applies(scene)) {
+            field = train_guiding_field(scene, options.frame, result.counters);
+            guiding_state = PathGuiding{&field, desc.render.volume.guiding.mix, nullptr};
+            guiding = &guiding_state;
+        }
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
                           [&](const tbb::blocked_range<int>& r) {
                               for (int i = r.begin(); i < r.end(); ++i)

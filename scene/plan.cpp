@@ -284,10 +284,17 @@ Plan make_plan(const SceneDesc& scene) {
     plan.stages.push_back(
         {"multiple-scattering", plan.in_scattering && multiple,
          !plan.in_scattering ? "no in-scattering"
-         : multiple ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
-                          ", Russian roulette from the third scattering"
-                    : "render.volume.integrator is \"single\": light scattered more than once "
-                      "is left out"});
+         : multiple
+             ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
+                   ", Russian roulette from the third scattering" +
+                   (volume.guiding.enabled
+                        ? ", directions guided (mix " + std::to_string(volume.guiding.mix) +
+                              " of a kd-tree of incident-radiance histograms trained in " +
+                              std::to_string(volume.guiding.training_passes) + " passes of " +
+                              std::to_string(volume.guiding.training_spp) + " spp)"
+                        : std::string())
+             : "render.volume.integrator is \"single\": light scattered more than once "
+               "is left out"});
     plan.stages.push_back(scattering_bound_plan_stage(scene, plan));
     plan.stages.push_back(gi_plan_stage(scene));
     plan.stages.push_back({"background", max_component(scene.background) > 0.0f,

@@ -73,6 +73,35 @@ FilmDesc parse_film(const JsonNode& node) {
     return film;
 }
 
+/// render.volume.guiding: true / false, or an object of GuidingSettings (enabled unless
+/// "enabled": false).
+GuidingSettings parse_guiding(const JsonNode& node) {
+    GuidingSettings guiding;
+    if (!node.is_object()) {
+        guiding.enabled = node.as_bool();
+        return guiding;
+    }
+    JsonObjectReader reader(node);
+    guiding.enabled = true;
+    if (auto v = reader.optional("enabled"))
+        guiding.enabled = v->as_bool();
+    if (auto v = reader.optional("mix"))
+        guiding.mix = v->in_open(0.0f, 1.0f);
+    if (auto v = reader.optional("training_passes"))
+        guiding.training_passes = parse_int_in(*v, 1, 64);
+    if (auto v = reader.optional("training_spp"))
+        guiding.training_spp = parse_int_in(*v, 1, 1024);
+    if (auto v = reader.optional("leaf_records"))
+        guiding.leaf_records = parse_int_in(*v, 16, 1 << 24);
+    if (auto v = reader.optional("uniform")) {
+        guiding.uniform = v->in_closed(0.0f, 1.0f);
+        if (!(guiding.uniform < 1.0f))
+            v->fail("must be in [0, 1)");
+    }
+    reader.finish();
+    return guiding;
+}
+
 RenderSettings parse_render(const JsonNode& node) {
     JsonObjectReader reader(node);
     RenderSettings render;
@@ -118,6 +147,8 @@ RenderSettings parse_render(const JsonNode& node) {
         if (auto sampling = volume.optional("light_sampling"))
             render.volume.light_sampling = parse_choice<LightSampling>(
                 *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});
+        if (auto guiding = volume.optional("guiding"))
+            render.volume.guiding = parse_guiding(*guiding);
         volume.finish();
     }
     if (auto v = reader.optional("whitted")) {
