@@ -5,13 +5,6 @@
 
 namespace kasumi {
 
-namespace {
-
-/// Solid angle of one bin, sr.
-constexpr float kBinSolidAngle = 4.0f * kPi / static_cast<float>(DirectionalHistogram::kBins);
-
-}  // namespace
-
 int DirectionalHistogram::bin_of(const Vec3& w) {
     const float z = std::clamp(w.z, -1.0f, 1.0f);
     const int band = std::min(kZBands - 1, static_cast<int>((z + 1.0f) * 0.5f * kZBands));
@@ -20,6 +13,15 @@ int DirectionalHistogram::bin_of(const Vec3& w) {
         phi += kTwoPi;
     const int sector = std::min(kPhiBins - 1, static_cast<int>(phi * (kPhiBins / kTwoPi)));
     return band * kPhiBins + sector;
+}
+
+Vec3 DirectionalHistogram::in_bin(int bin, Vec2 u) {
+    const int band = bin / kPhiBins, sector = bin % kPhiBins;
+    const float z =
+        std::clamp(-1.0f + 2.0f * (static_cast<float>(band) + u.x) / kZBands, -1.0f, 1.0f);
+    const float phi = kTwoPi * (static_cast<float>(sector) + u.y) / kPhiBins;
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    return Vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 
 void DirectionalHistogram::add(const Vec3& w, double weight) {
@@ -61,12 +63,7 @@ Vec3 DirectionalHistogram::sample(Vec2 u, float& pdf_sr) const {
     const float below = i > 0 ? m_cdf[i - 1] : 0.0f;
     // The offset of u.x inside the bin's share is itself uniform: it places z in the band.
     const float t = m_mass[i] > 0.0f ? std::clamp((u.x - below) / m_mass[i], 0.0f, 1.0f) : 0.5f;
-    const int band = i / kPhiBins, sector = i % kPhiBins;
-    const float z =
-        std::clamp(-1.0f + 2.0f * (static_cast<float>(band) + t) / kZBands, -1.0f, 1.0f);
-    const float phi = kTwoPi * (static_cast<float>(sector) + u.y) / kPhiBins;
-    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const Vec3 w(r * std::cos(phi), r * std::sin(phi), z);
+    const Vec3 w = in_bin(i, Vec2(t, u.y));
     // The density of the bin the direction landed in (rounding at a bin edge may cross it).
     pdf_sr = pdf(w);
     return w;

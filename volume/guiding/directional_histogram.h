@@ -16,8 +16,14 @@ class DirectionalHistogram {
     static constexpr int kPhiBins = 16;
     static constexpr int kBins = kZBands * kPhiBins;
 
+    /// Solid angle of every bin, sr.
+    static constexpr float kBinSolidAngle = 4.0f * kPi / static_cast<float>(kBins);
+
     /// The bin holding unit direction `w`.
     static int bin_of(const Vec3& w);
+    /// The direction at (z, phi) fractions `u` in [0, 1)² of bin `bin`: uniform over the bin's
+    /// solid angle when u is uniform (equal-area map); u = (0.5, 0.5) is the bin's centre.
+    static Vec3 in_bin(int bin, Vec2 u);
 
     /// Adds `weight` (>= 0, finite; anything else is ignored) to the bin of unit direction `w`.
     void add(const Vec3& w, double weight);
@@ -26,6 +32,8 @@ class DirectionalHistogram {
     /// was added.
     bool normalise(float uniform);
 
+    /// Probability of bin `bin` (0 before normalise()).
+    float mass(int bin) const { return m_mass[static_cast<size_t>(bin)]; }
     /// Density of direction `w` (unit), per steradian; 0 before normalise().
     float pdf(const Vec3& w) const;
     /// A direction drawn in proportion to pdf() from `u` in [0, 1)², and its pdf per steradian.

@@ -1,10 +1,15 @@
 #pragma once
-/// Guided scattering directions: the one-sample mixture of a learnt incident-radiance histogram
-/// and the phase function (Herholz, Zhao, Georgiev, Keller & Lensch 2019, sec. 5: "we sample
-/// from a mixture of the guiding distribution and the phase function"),
-///   pdf(wi) = mix * guide(wi) + (1 - mix) * phase(mu),   per steradian,
-/// whose path weight sigma_s p(mu) / pdf(wi) is that of one-sample MIS with the balance heuristic
-/// (Veach 1997, sec. 9.2.4): unbiased wherever the phase function is positive.
+/// Guided scattering directions: the one-sample mixture of the product of a learnt
+/// incident-radiance histogram and the phase function, and the phase function alone
+/// (Herholz, Zhao, Georgiev, Keller & Lensch 2019, sec. 5: directions from a mixture of the
+/// guiding distribution, which approximates L_i times the phase function, and the phase function):
+///   pdf(wi) = mix * G(wi) + (1 - mix) * phase(mu),   per steradian,
+///   G(wi)   = h_b p(mu_b) / (sum_j h_j p(mu_j) * 4 pi / kBins),   b = the bin of wi,
+/// with h_j the histogram's bin probabilities and mu_j the scattering cosine of bin j's centre:
+/// G is piecewise constant over the bins, so it is exact to sample and evaluate. The path
+/// weight sigma_s p(mu) / pdf(wi) is that of one-sample MIS with the balance heuristic (Veach
+/// 1997, sec. 9.2.4): unbiased wherever the phase function is positive, and at most
+/// 1 / (1 - mix) times the phase-sampled weight.
 /// Used for one scattering medium at the point (a single bit in `mask`); the caller falls back
 /// to MediumSet::sample_scattering otherwise.
 #include "volume/guiding/directional_histogram.h"
