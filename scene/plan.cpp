@@ -288,8 +288,8 @@ Plan make_plan(const SceneDesc& scene) {
              ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
                    ", Russian roulette from the third scattering" +
                    (volume.guiding.enabled
-                        ? ", directions guided (mix " + std::to_string(volume.guiding.mix) +
-                              " of a kd-tree of incident-radiance histograms trained in " +
+                        ? ", directions guided (mix " + format_g(volume.guiding.mix) +
+                              " of incident-radiance histograms x phase, kd-tree trained in " +
                               std::to_string(volume.guiding.training_passes) + " passes of " +
                               std::to_string(volume.guiding.training_spp) + " spp)"
                         : std::string())

@@ -232,6 +232,20 @@ TEST(AdaptiveSampling, UnconvergedPixelsAreTheUniformRender) {
     EXPECT_EQ(channel(adaptive, "B"), channel(uniform, "B"));
 }
 
+TEST(AdaptiveSampling, PlanSaysItRanWithItsThreshold) {
+    const auto stage = [](const char* text) {
+        for (const PlanStage& s : make_plan(scene_from_text(text)).stages)
+            if (s.name == "adaptive-sampling")
+                return s;
+        ADD_FAILURE() << "no adaptive-sampling stage";
+        return PlanStage{};
+    };
+    const PlanStage on = stage(R"({"film": {"spp": 64, "noise_threshold": 0.02}})");
+    EXPECT_TRUE(on.enabled);
+    EXPECT_NE(on.reason.find("0.02"), std::string::npos) << on.reason;
+    EXPECT_FALSE(stage(R"({"film": {"spp": 64}})").enabled);
+}
+
 TEST(AdaptiveSampling, BadThresholdIsAnInputErrorWithItsPointer) {
     for (const char* bad : {"-0.1", "\"fine\"", "null", "true"}) {
         try {

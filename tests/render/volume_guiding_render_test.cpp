@@ -1,8 +1,10 @@
 // Volume path guiding in the renderer (render/guiding_training.h): the trained field and so the
 // image are the same for any thread count, and the guided image agrees with the unguided one.
+#include "core/error.h"
 #include "render/guiding_training.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -78,6 +80,31 @@ TEST(VolumeGuiding, GuidedMeanMatchesUnguided) {
     ASSERT_GT(sum_plain, 0.0);
     const double n = static_cast<double>(plain.size());
     EXPECT_NEAR(sum_guided / n, sum_plain / n, 4.0 * std::sqrt(variance) / n);
+}
+
+TEST(VolumeGuiding, SettingsAreRangeChecked) {
+    const auto guiding = [](const std::string& value) {
+        return scene_from_text(R"({"render": {"volume": {"guiding": )" + value + "}}}")
+            .render.volume.guiding;
+    };
+    EXPECT_TRUE(guiding("true").enabled);
+    EXPECT_FALSE(guiding("false").enabled);
+    const GuidingSettings object = guiding(R"({"mix": 0.3, "training_passes": 2})");
+    EXPECT_TRUE(object.enabled);
+    EXPECT_FLOAT_EQ(object.mix, 0.3f);
+    EXPECT_EQ(object.training_passes, 2);
+    EXPECT_FALSE(guiding(R"({"enabled": false})").enabled);
+    for (const char* bad : {R"({"mix": 1})", R"({"mix": 0})", R"({"uniform": 1})",
+                            R"({"training_passes": 0})", R"({"bins": 4})", "0.5"}) {
+        try {
+            guiding(bad);
+            ADD_FAILURE() << bad << " accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::Input) << bad;
+            EXPECT_NE(std::string(e.what()).find("/render/volume/guiding"), std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 }  // namespace
