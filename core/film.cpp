@@ -31,7 +31,7 @@ bool parse_film_aovs(const std::string& text, uint32_t& aovs) {
     while (std::getline(in, name, ',')) {
         any = true;
         if (name == "all")
-            aovs |= kAovAll;
+            aovs |= kAovAll | kAovSamples;
         else if (name == "none")
             continue;
         else if (name == "albedo")
@@ -44,6 +44,8 @@ bool parse_film_aovs(const std::string& text, uint32_t& aovs) {
             aovs |= kAovVolume;
         else if (name == "transmittance")
             aovs |= kAovTransmittance;
+        else if (name == "samples")
+            aovs |= kAovSamples;
         else
             return false;
     }
@@ -57,17 +59,20 @@ std::vector<Film::Storage>& Film::kept_storage() {
 
 namespace {
 
-/// The AOVs in channel order: bit, channels, name prefix ("depth." has only Z).
+/// The AOVs in channel order: bit, channels, name prefix, name of a single channel.
 struct AovLayout {
     uint32_t bit;
     int channels;
     const char* prefix;
+    const char* single;
 };
-constexpr AovLayout kAovLayout[5] = {{kAovAlbedo, 3, "albedo."},
-                                     {kAovDepth, 1, "depth."},
-                                     {kAovSurface, 3, "surface."},
-                                     {kAovVolume, 3, "volume."},
-                                     {kAovTransmittance, 3, "transmittance."}};
+constexpr int kAovKinds = 6;
+constexpr AovLayout kAovLayout[kAovKinds] = {{kAovAlbedo, 3, "albedo.", ""},
+                                             {kAovDepth, 1, "depth.", "Z"},
+                                             {kAovSurface, 3, "surface.", ""},
+                                             {kAovVolume, 3, "volume.", ""},
+                                             {kAovTransmittance, 3, "transmittance.", ""},
+                                             {kAovSamples, 1, "samples.", "count"}};
 
 int channel_count(uint32_t aovs) {
     int n = 4;
@@ -81,10 +86,10 @@ int channel_count(uint32_t aovs) {
 Film::Film(int width, int height, uint32_t aovs)
     : m_width(width),
       m_height(height),
-      m_aovs(aovs & kAovAll),
+      m_aovs(aovs & (kAovAll | kAovSamples)),
       m_pixels(static_cast<size_t>(width) * static_cast<size_t>(height)) {
     int next = 4;
-    for (int k = 0; k < 5; ++k) {
+    for (int k = 0; k < kAovKinds; ++k) {
         m_first[k] = (m_aovs & kAovLayout[k].bit) != 0 ? next : -1;
         next += m_first[k] >= 0 ? kAovLayout[k].channels : 0;
     }
@@ -147,6 +152,8 @@ void Film::set_pixel(int x, int y, const PixelSample& sum, int n, int hits, floa
         put3(m_first[3], sum.volume);
     if (m_first[4] >= 0)
         put3(m_first[4], sum.transmittance);
+    if (m_first[5] >= 0)
+        plane(m_first[5])[i] = static_cast<float>(n);
 }
 
 Image Film::to_image() const {
@@ -156,19 +163,19 @@ Image Film::to_image() const {
 }
 
 std::vector<FilmPlane> Film::planes(uint32_t aovs) const {
-    KASUMI_CHECK((aovs & ~m_aovs) == 0);  // only stored AOVs can be read out
+    aovs &= m_aovs;  // only stored AOVs can be read out
     const char* rgba[4] = {"R", "G", "B", "A"};
     std::vector<FilmPlane> planes;
     planes.reserve(static_cast<size_t>(channel_count(aovs)));
     for (int c = 0; c < 4; ++c)
         planes.push_back({rgba[c], plane(c)});
-    for (int k = 0; k < 5; ++k) {
+    for (int k = 0; k < kAovKinds; ++k) {
         if ((aovs & kAovLayout[k].bit) == 0)
             continue;
         for (int c = 0; c < kAovLayout[k].channels; ++c) {
-            planes.push_back(
-                {std::string(kAovLayout[k].prefix) + (kAovLayout[k].channels == 1 ? "Z" : rgba[c]),
-                 plane(m_first[k] + c)});
+            planes.push_back({std::string(kAovLayout[k].prefix) +
+                                  (kAovLayout[k].channels == 1 ? kAovLayout[k].single : rgba[c]),
+                              plane(m_first[k] + c)});
         }
     }
     return planes;

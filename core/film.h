@@ -36,11 +36,15 @@ enum FilmAov : uint32_t {
     kAovSurface = 1u << 2,        ///< surface.R/G/B
     kAovVolume = 1u << 3,         ///< volume.R/G/B
     kAovTransmittance = 1u << 4,  ///< transmittance.R/G/B
-    kAovAll = 31u,
+    kAovAll = 31u,                ///< the five above ("all" on the command line adds samples)
+    /// samples.count: camera samples taken in the pixel (adaptive sampling stops pixels before
+    /// film.spp; render/adaptive_sampling.h). Not in kAovAll: a uniform render's count is
+    /// film.spp everywhere, in the metadata.
+    kAovSamples = 1u << 5,
 };
 
 /// Parses a comma-separated list of AOV names ("albedo", "depth", "surface", "volume",
-/// "transmittance"), or "all" or "none"; returns false on an unknown name.
+/// "transmittance", "samples"), or "all" (every one) or "none"; returns false on an unknown name.
 bool parse_film_aovs(const std::string& text, uint32_t& aovs);
 
 class Film {
@@ -63,18 +67,19 @@ class Film {
     uint32_t aovs() const { return m_aovs; }  ///< the AOVs stored (FilmAov bits)
 
     /// Adds the mean of `n` samples already summed in `sum` for pixel (x, y); `hits` of them
-    /// reached a surface and `depth_sum` is their summed depth.
+    /// reached a surface and `depth_sum` is their summed depth. The samples AOV records `n`.
     void set_pixel(int x, int y, const PixelSample& sum, int n, int hits, float depth_sum);
 
     /// The image with channels R,G,B,A, then the stored AOVs among albedo.*, depth.Z, surface.*,
-    /// volume.*, transmittance.*, in that order. Alpha is the fraction of samples that hit a
-    /// surface, plus the opacity 1 - T of the media for the rest (luminance-weighted).
+    /// volume.*, transmittance.*, samples.count, in that order. Alpha is the fraction of samples
+    /// that hit a surface, plus the opacity 1 - T of the media for the rest (luminance-weighted).
     Image to_image() const;
 
     /// The same into `image`, reusing its channel buffers when it already has this film's size
     /// and channels (no allocation: what a sequence does frame after frame); `aovs` (FilmAov
-    /// bits, a subset of aovs(): anything else is a programming error) chooses the AOV
-    /// channels, in the order above. One copy per plane. Metadata is cleared.
+    /// bits) chooses the AOV channels among the stored ones (a uniform render stores no
+    /// samples.count, so "all" writes it only for adaptive renders), in the order above. One
+    /// copy per plane. Metadata is cleared.
     void to_image(Image& image, uint32_t aovs) const;
     void to_image(Image& image) const { to_image(image, m_aovs); }
 
@@ -97,8 +102,8 @@ class Film {
     uint32_t m_aovs;
     size_t m_pixels;
     /// First plane of each AOV (index by bit position: albedo, depth, surface, volume,
-    /// transmittance), -1 if not stored.
-    int m_first[5];
+    /// transmittance, samples), -1 if not stored.
+    int m_first[6];
     Storage m_planes;  ///< channel-major: plane c holds pixel i at c * m_pixels + i
 };
 

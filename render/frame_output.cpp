@@ -11,7 +11,7 @@ void parse_output_format(const std::string& aovs_text, const std::string& compre
     if (!parse_film_aovs(aovs_text, aovs))
         throw Error(ErrorKind::Usage,
                     "--aovs expects all, none or a comma-separated list of albedo, depth, "
-                    "surface, volume, transmittance; got \"" +
+                    "surface, volume, transmittance, samples; got \"" +
                         aovs_text + "\"");
     if (!parse_exr_compression(compression_text, compression))
         throw Error(ErrorKind::Usage, "--compression expects zip, piz, rle or none; got \"" +
@@ -68,6 +68,10 @@ std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRunti
          std::to_string(
              render_rates(c, result.seconds, result.threads).density_lookups_per_s_per_core)},
     };
+    if (desc.film.noise_threshold > 0.0f) {
+        metadata.emplace_back("noise_threshold", std::to_string(desc.film.noise_threshold));
+        metadata.emplace_back("min_spp", std::to_string(desc.film.min_spp));
+    }
     for (auto& kv : stage_metadata(times, scene.plan()))
         metadata.push_back(std::move(kv));
     return metadata;

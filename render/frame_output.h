@@ -22,12 +22,13 @@ inline constexpr const char* kKasumiVersion = "kasumi 0.1.0";
 /// Where a frame's files go and how the EXR is stored.
 struct OutputPaths {
     std::string exr;
-    std::string preview;                               ///< empty: no preview
-    uint32_t aovs = kAovAll;                           ///< FilmAov bits written beside R, G, B, A
+    std::string preview;                    ///< empty: no preview
+    uint32_t aovs = kAovAll | kAovSamples;  ///< FilmAov bits written beside R, G, B, A (if stored)
     ExrCompression compression = ExrCompression::Zip;  ///< lossless, see core/exr_io.h
 };
 
-/// Parses the `--aovs` (all, none, or a list of albedo, depth, surface, volume, transmittance)
+/// Parses the `--aovs` (all, none, or a list of albedo, depth, surface, volume, transmittance,
+/// samples: the last written only by adaptive renders)
 /// and `--compression` (zip, piz, rle, none) options of render and sequence; throws a usage
 /// error naming the option and what it expects.
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,

@@ -249,15 +249,15 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
 }
 
 VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment, Pcg32& rng,
-                                  RenderCounters& counters) {
+                                  RenderCounters& counters, const PathGuiding* guiding) {
     ++counters.volume_rays;
     VolumeCounters vc;
     const RenderPathEnvironment environment(scene, counters);
-    VolumeResult v =
-        integrate_media(scene.media(), scene.desc().lights, scene.occlusion(), &environment,
-                        segment, scene.desc().render.volume, scene.plan().in_scattering, rng, vc,
-                        !(segment.t_max < kInfinity) && is_black(scene.desc().background) &&
-                            scene.sky() == nullptr);
+    VolumeResult v = integrate_media(
+        scene.media(), scene.desc().lights, scene.occlusion(), &environment, segment,
+        scene.desc().render.volume, scene.plan().in_scattering, rng, vc,
+        !(segment.t_max < kInfinity) && is_black(scene.desc().background) && scene.sky() == nullptr,
+        guiding);
     counters.volume_steps += vc.steps;
     counters.volume_shadow_rays += vc.shadow_rays;
     counters.density_lookups += vc.density_lookups;
@@ -272,7 +272,8 @@ VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment,
 }
 
 PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
-                             RenderCounters& counters, const std::optional<SurfaceHit>* first_hit) {
+                             RenderCounters& counters, const std::optional<SurfaceHit>* first_hit,
+                             const PathGuiding* guiding) {
     ++counters.camera_rays;
     PixelSample sample;
     float t_end = ray.t_max;
@@ -306,7 +307,7 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
     if (scene.plan().volume) {
         Ray segment = ray;
         segment.t_max = t_end;
-        const VolumeResult v = trace_volume_segment(scene, segment, rng, counters);
+        const VolumeResult v = trace_volume_segment(scene, segment, rng, counters, guiding);
         sample.volume = v.radiance;
         sample.transmittance = v.transmittance;
     }

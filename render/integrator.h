@@ -5,21 +5,25 @@
 #include "core/rng.h"
 #include "render/render_stats.h"
 #include "render/scene_runtime.h"
+#include "volume/guiding/path_guiding.h"
 
 namespace kasumi {
 
 /// Radiance (cd/m²) and AOVs seen along `ray` (a camera ray). Never throws; a non-finite result
 /// is returned as is for the caller to count. `first_hit`, when given, is the ray's closest
 /// surface hit already traced (SurfaceScene::intersect_coherent for a row of pixels).
+/// `guiding`, if given, guides the volume stage's paths and collects their training records.
 PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& rng,
                              RenderCounters& counters,
-                             const std::optional<SurfaceHit>* first_hit = nullptr);
+                             const std::optional<SurfaceHit>* first_hit = nullptr,
+                             const PathGuiding* guiding = nullptr);
 
 /// The volume stage over one ray segment [segment.t_min, segment.t_max) (t_max: the first
 /// surface, or kInfinity): transmittance and in-scattered radiance, for camera rays and for
-/// Whitted's reflected and refracted rays alike. Counts one volume ray. Never throws.
+/// Whitted's reflected and refracted rays alike. Counts one volume ray. `guiding` as
+/// integrate_media's (volume/volume_path.h). Never throws.
 VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment, Pcg32& rng,
-                                  RenderCounters& counters);
+                                  RenderCounters& counters, const PathGuiding* guiding = nullptr);
 
 /// What is known, before any shadow ray, about whether a light is blocked by surfaces at a
 /// shading point (gi/photon/photon_shadow.h decides it from shadow photons).

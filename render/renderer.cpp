@@ -1,12 +1,16 @@
 #include "render/renderer.h"
 
 #include "core/progress.h"
+#include "render/adaptive_sampling.h"
+#include "render/camera_sample.h"
+#include "render/guiding_training.h"
 #include "render/integrator.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
 #include <optional>
@@ -23,36 +27,17 @@ bool is_finite_sample(const PixelSample& s) {
 
 }  // namespace
 
-namespace {
-
-/// The camera ray of sample `sample` of pixel (x, y) and the generator that continues it: both
-/// come from the key (pixel, sample, frame, seed).
-struct CameraSample {
-    Ray ray;
-    Pcg32 rng;
-};
-
-CameraSample camera_sample(const SceneRuntime& scene, int x, int y, int sample, uint32_t frame) {
-    Pcg32 rng = pixel_rng(static_cast<uint32_t>(x), static_cast<uint32_t>(y),
-                          static_cast<uint32_t>(sample), frame, scene.desc().render.seed);
-    Vec2 jitter = rng.next_vec2();
-    if (!scene.desc().film.jitter)
-        jitter = Vec2(0.5f);
-    const Ray ray = scene.camera().generate_ray(static_cast<float>(x) + jitter.x,
-                                                static_cast<float>(y) + jitter.y);
-    return {ray, rng};
-}
-
-}  // namespace
-
 RenderResult render_image(const SceneRuntime& scene, const RenderOptions& options) {
     const SceneDesc& desc = scene.desc();
-    const int width = desc.film.width, height = desc.film.height, spp = desc.film.spp;
+    const int width = desc.film.width, height = desc.film.height;
+    const AdaptiveCriterion criterion = adaptive_criterion(desc.film);
+    // A uniform render's sample count is film.spp everywhere: no plane for it.
+    const uint32_t aovs = criterion.threshold > 0.0 ? options.aovs : options.aovs & ~kAovSamples;
     const int tile = desc.render.tile_size;
     const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
     const int threads = options.threads > 0 ? options.threads : desc.render.threads;
 
-    RenderResult result{Film(width, height, options.aovs), {}, 0.0, 1, false};
+    RenderResult result{Film(width, height, aovs), {}, 0.0, 1, false};
     std::mutex counters_mutex;
     std::atomic<bool> stopped{false};
     Progress progress("render", static_cast<uint64_t>(tiles_x) * tiles_y, options.progress);
@@ -67,6 +52,10 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
         stopped = true;
         return true;
     };
+    // Volume path guiding: the field is trained (deterministically) before the first tile.
+    GuidingField field;
+    PathGuiding guiding_state;
+    const PathGuiding* guiding = nullptr;
     auto render_tile = [&](int tile_index) {
         if (cancelled())
             return;
@@ -77,44 +66,54 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
         // A tile's row is traced one sample index at a time: its camera rays (neighbouring
         // pixels) go through the BVH together (SurfaceScene::intersect_coherent), then each is
         // shaded with its own generator. Every pixel gets the samples, generators and sums it
-        // got one pixel at a time (same images, bit for bit).
+        // got one pixel at a time (same images, bit for bit). With adaptive sampling only the
+        // row's pixels still sampling take the next sample index.
         const SurfaceScene* surfaces = scene.surfaces();
         std::vector<PixelSample> sums(row);
         std::vector<int> hits(row);
         std::vector<float> depth_sums(row);
+        std::vector<PixelConvergence> convergence(row);
+        std::vector<size_t> active;  // the row's pixels still sampling, left to right
+        active.reserve(row);
         std::vector<CameraSample> samples;
         samples.reserve(row);
         std::vector<Ray> rays(row);
         std::vector<std::optional<SurfaceHit>> first_hits(row);
         for (int y = y0; y < std::min(y0 + tile, height) && !stopped; ++y) {
+            active.clear();
             for (size_t i = 0; i < row; ++i) {
                 sums[i] = PixelSample{};
                 sums[i].transmittance = Rgb(0.0f);
                 hits[i] = 0;
                 depth_sums[i] = 0.0f;
+                convergence[i] = PixelConvergence{};
+                active.push_back(i);
             }
             bool complete = true;
-            for (int s = 0; s < spp; ++s) {
+            for (int s = 0; !active.empty(); ++s) {
                 if (cancelled()) {
                     complete = false;
                     break;
                 }
                 samples.clear();
-                for (size_t i = 0; i < row; ++i) {
-                    samples.push_back(
-                        camera_sample(scene, x0 + static_cast<int>(i), y, s, options.frame));
-                    rays[i] = samples[i].ray;
+                for (size_t k = 0; k < active.size(); ++k) {
+                    samples.push_back(camera_sample(scene, x0 + static_cast<int>(active[k]), y, s,
+                                                    options.frame));
+                    rays[k] = samples[k].ray;
                 }
                 if (surfaces != nullptr)
-                    surfaces->intersect_coherent(rays.data(), row, first_hits.data());
-                for (size_t i = 0; i < row; ++i) {
+                    surfaces->intersect_coherent(rays.data(), active.size(), first_hits.data());
+                for (size_t k = 0; k < active.size(); ++k) {
+                    const size_t i = active[k];
                     const PixelSample p =
-                        trace_camera_ray(scene, rays[i], samples[i].rng, local,
-                                         surfaces != nullptr ? &first_hits[i] : nullptr);
+                        trace_camera_ray(scene, rays[k], samples[k].rng, local,
+                                         surfaces != nullptr ? &first_hits[k] : nullptr, guiding);
                     if (!is_finite_sample(p)) {
                         ++local.nonfinite_samples;
+                        convergence[i].add(0.0);  // counted, as zero: the mean stays unbiased
                         continue;
                     }
+                    convergence[i].add(luminance(p.radiance));
                     PixelSample& sum = sums[i];
                     sum.radiance += p.radiance;
                     sum.surface += p.surface;
@@ -126,12 +125,18 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                         depth_sums[i] += p.depth;
                     }
                 }
+                // Each pixel decides from its own samples alone (render/adaptive_sampling.h).
+                active.erase(std::remove_if(active.begin(), active.end(),
+                                            [&](size_t i) {
+                                                return !keeps_sampling(convergence[i], criterion);
+                                            }),
+                             active.end());
             }
             if (!complete)
                 break;
             for (size_t i = 0; i < row; ++i)
-                result.film.set_pixel(x0 + static_cast<int>(i), y, sums[i], spp, hits[i],
-                                      depth_sums[i]);
+                result.film.set_pixel(x0 + static_cast<int>(i), y, sums[i], convergence[i].n,
+                                      hits[i], depth_sums[i]);
         }
         {
             std::lock_guard<std::mutex> lock(counters_mutex);
@@ -144,6 +149,11 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
     arena.initialize();
     result.threads = arena.max_concurrency();
     arena.execute([&] {
+        if (guiding_applies(scene)) {
+            field = train_guiding_field(scene, options.frame, result.counters);
+            guiding_state = PathGuiding{&field, desc.render.volume.guiding.mix, nullptr};
+            guiding = &guiding_state;
+        }
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
                           [&](const tbb::blocked_range<int>& r) {
                               for (int i = r.begin(); i < r.end(); ++i)

@@ -15,8 +15,9 @@ struct RenderOptions {
     uint32_t frame = 0;
     bool progress = true;
     const std::atomic<bool>* cancel =
-        nullptr;              ///< set asynchronously to stop after the current tiles
-    uint32_t aovs = kAovAll;  ///< FilmAov bits the film stores (only those can be written)
+        nullptr;  ///< set asynchronously to stop after the current tiles
+    /// FilmAov bits the film stores (only those can be written); samples only when adaptive
+    uint32_t aovs = kAovAll | kAovSamples;
 };
 
 struct RenderResult {

@@ -7,6 +7,7 @@
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -188,6 +189,25 @@ PlanStage sky_shafts_plan_stage(const SceneDesc& scene, const Plan& plan) {
 
 }  // namespace
 
+namespace {
+
+/// The adaptive-sampling stage: on when film.noise_threshold > 0, with its criterion.
+PlanStage adaptive_sampling_plan_stage(const FilmDesc& film) {
+    if (!(film.noise_threshold > 0.0f))
+        return {"adaptive-sampling", false,
+                "film.noise_threshold is 0: every pixel takes " + std::to_string(film.spp) +
+                    " samples"};
+    std::ostringstream reason;
+    reason << "film.noise_threshold " << film.noise_threshold
+           << ": a pixel stops when the standard error of its mean luminance is below that "
+              "fraction of the mean (or of "
+           << film.noise_floor_cd_m2 << " cd/m2), after " << std::min(film.min_spp, film.spp)
+           << " to " << film.spp << " samples; samples.count AOV";
+    return {"adaptive-sampling", true, reason.str()};
+}
+
+}  // namespace
+
 Plan make_plan(const SceneDesc& scene) {
     Plan plan;
     const bool has_shapes = !scene.shapes.empty();
@@ -264,10 +284,17 @@ Plan make_plan(const SceneDesc& scene) {
     plan.stages.push_back(
         {"multiple-scattering", plan.in_scattering && multiple,
          !plan.in_scattering ? "no in-scattering"
-         : multiple ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
-                          ", Russian roulette from the third scattering"
-                    : "render.volume.integrator is \"single\": light scattered more than once "
-                      "is left out"});
+         : multiple
+             ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
+                   ", Russian roulette from the third scattering" +
+                   (volume.guiding.enabled
+                        ? ", directions guided (mix " + format_g(volume.guiding.mix) +
+                              " of incident-radiance histograms x phase, kd-tree trained in " +
+                              std::to_string(volume.guiding.training_passes) + " passes of " +
+                              std::to_string(volume.guiding.training_spp) + " spp)"
+                        : std::string())
+             : "render.volume.integrator is \"single\": light scattered more than once "
+               "is left out"});
     plan.stages.push_back(scattering_bound_plan_stage(scene, plan));
     plan.stages.push_back(gi_plan_stage(scene));
     plan.stages.push_back({"background", max_component(scene.background) > 0.0f,
@@ -278,6 +305,7 @@ Plan make_plan(const SceneDesc& scene) {
     if (scene.sky != nullptr)
         plan.stages.push_back(sky_shafts_plan_stage(scene, plan));
     plan.stages.push_back(quality_plan_stage(scene));
+    plan.stages.push_back(adaptive_sampling_plan_stage(scene.film));
     return plan;
 }
 

@@ -20,9 +20,16 @@
 namespace kasumi {
 
 struct FilmDesc {
-    int width = 640;     ///< pixels, 1..16384
-    int height = 360;    ///< pixels, 1..16384
-    int spp = 16;        ///< samples per pixel, >= 1
+    int width = 640;   ///< pixels, 1..16384
+    int height = 360;  ///< pixels, 1..16384
+    int spp = 16;      ///< samples per pixel, >= 1 (the most a pixel takes when adaptive)
+    /// > 0: adaptive sampling (render/adaptive_sampling.h): a pixel stops once the relative
+    /// standard error of its mean luminance is below this; 0: every pixel takes spp samples.
+    float noise_threshold = 0.0f;
+    /// Luminance (cd/m²) below which a pixel's standard error counts relative to this instead of
+    /// its mean: black and near-black pixels converge on an absolute error.
+    float noise_floor_cd_m2 = 1e-3f;
+    int min_spp = 16;    ///< adaptive: samples every pixel takes before it may stop, >= 2
     bool jitter = true;  ///< false: every sample through the pixel centre (peer comparisons)
     /// EXR pixel type of R, G, B, A (AOVs stay float); half saturates beyond 65504 (exr_io.h)
     ExrPixelType pixel_type = ExrPixelType::Float;

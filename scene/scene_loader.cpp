@@ -59,12 +59,47 @@ FilmDesc parse_film(const JsonNode& node) {
         film.spp = parse_int_in(*v, 1, 1 << 20);
     if (auto v = reader.optional("jitter"))
         film.jitter = v->as_bool();
+    if (auto v = reader.optional("noise_threshold"))
+        film.noise_threshold = v->non_negative();
+    if (auto v = reader.optional("noise_floor_cd_m2"))
+        film.noise_floor_cd_m2 = v->positive();
+    if (auto v = reader.optional("min_spp"))
+        film.min_spp = parse_int_in(*v, 2, 1 << 20);
     if (auto v = reader.optional("pixel_type")) {
         if (!parse_exr_pixel_type(v->as_string(), film.pixel_type))
             v->fail("must be \"float\" or \"half\"");
     }
     reader.finish();
     return film;
+}
+
+/// render.volume.guiding: true / false, or an object of GuidingSettings (enabled unless
+/// "enabled": false).
+GuidingSettings parse_guiding(const JsonNode& node) {
+    GuidingSettings guiding;
+    if (!node.is_object()) {
+        guiding.enabled = node.as_bool();
+        return guiding;
+    }
+    JsonObjectReader reader(node);
+    guiding.enabled = true;
+    if (auto v = reader.optional("enabled"))
+        guiding.enabled = v->as_bool();
+    if (auto v = reader.optional("mix"))
+        guiding.mix = v->in_open(0.0f, 1.0f);
+    if (auto v = reader.optional("training_passes"))
+        guiding.training_passes = parse_int_in(*v, 1, 64);
+    if (auto v = reader.optional("training_spp"))
+        guiding.training_spp = parse_int_in(*v, 1, 1024);
+    if (auto v = reader.optional("leaf_records"))
+        guiding.leaf_records = parse_int_in(*v, 16, 1 << 24);
+    if (auto v = reader.optional("uniform")) {
+        guiding.uniform = v->in_closed(0.0f, 1.0f);
+        if (!(guiding.uniform < 1.0f))
+            v->fail("must be in [0, 1)");
+    }
+    reader.finish();
+    return guiding;
 }
 
 RenderSettings parse_render(const JsonNode& node) {
@@ -112,6 +147,8 @@ RenderSettings parse_render(const JsonNode& node) {
         if (auto sampling = volume.optional("light_sampling"))
             render.volume.light_sampling = parse_choice<LightSampling>(
                 *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});
+        if (auto guiding = volume.optional("guiding"))
+            render.volume.guiding = parse_guiding(*guiding);
         volume.finish();
     }
     if (auto v = reader.optional("whitted")) {

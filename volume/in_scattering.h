@@ -5,6 +5,7 @@
 #include "core/occlusion_query.h"
 #include "core/rng.h"
 #include "lights/light.h"
+#include "volume/guiding/guiding_settings.h"
 #include "volume/medium_set.h"
 
 #include <vector>
@@ -57,6 +58,7 @@ struct VolumeSettings {
     /// integrated exactly over the lit parts; volume/shadow_intervals.h): deterministic,
     /// biased as bounded there. 0: stratified shadow-ray samples (unbiased).
     int shadow_intervals = 0;
+    GuidingSettings guiding;  ///< volume path guiding of multiple scattering (off by default)
 };
 
 struct VolumeResult {

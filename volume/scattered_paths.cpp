@@ -1,5 +1,6 @@
 #include "volume/scattered_paths.h"
 
+#include "volume/guiding/guided_scattering.h"
 #include "volume/scattered_direct.h"
 #include "volume/transmittance.h"
 
@@ -13,17 +14,28 @@ namespace {
 constexpr int kRouletteDepth = 3;
 
 /// The next path vertex after a scattering event at `position`: a direction from the media's
-/// phase mixture (throughput times f / pdf), Russian roulette from kRouletteDepth events on, and
-/// the continued ray (ended at the environment's surface). False: the path ends.
+/// phase mixture, or, where `guiding` has a guide for the point (one medium there), from the
+/// guided mixture (volume/guiding/guided_scattering.h); throughput times f / pdf, Russian
+/// roulette from kRouletteDepth events on, and the continued ray (ended at the environment's
+/// surface). The vertex goes to `recorder`. False: the path ends.
 bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask,
                     const PointCoefficients& k, const Vec3& wo, int depth,
-                    const PathEnvironment* environment, Pcg32& rng, Rgb& throughput, Ray& ray) {
+                    const PathEnvironment* environment, const PathGuiding* guiding,
+                    GuidingPathRecorder& recorder, Pcg32& rng, Rgb& throughput, Ray& ray) {
+    const DirectionalHistogram* guide = nullptr;
+    if (guiding != nullptr && guiding->field != nullptr && mask != 0 && (mask & (mask - 1)) == 0)
+        guide = guiding->field->find(position);
     const float u_pick = rng.next_float();
     const Vec2 u = rng.next_vec2();
-    const MixtureSample next = media.sample_scattering(position, mask, wo, u_pick, u, &k);
+    const MixtureSample next =
+        guide != nullptr
+            ? sample_guided_scattering(media, static_cast<uint32_t>(__builtin_ctz(mask)), *guide,
+                                       guiding->mix, k, wo, u_pick, u)
+            : media.sample_scattering(position, mask, wo, u_pick, u, &k);
     if (!(next.pdf > 0.0f))
         return false;
     throughput *= next.scattering / next.pdf;
+    recorder.vertex(position, next.wi, next.pdf, throughput);
     if (depth >= kRouletteDepth) {
         const float survive = std::min(1.0f, max_component(throughput));
         if (!(rng.next_float() < survive))
@@ -45,30 +57,35 @@ float mean(const Rgb& c) {
 Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
                   const OcclusionQuery* occlusion, const PathEnvironment* environment,
                   const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
-                  VolumeCounters& counters, Rgb* first_escape) {
+                  VolumeCounters& counters, Rgb* first_escape, const PathGuiding* guiding) {
     Rgb radiance(0.0f), throughput(1.0f);
+    GuidingPathRecorder recorder(guiding);
+    const auto gather = [&](const Rgb& contribution) {
+        radiance += contribution;
+        recorder.add(contribution);
+    };
     Ray ray = camera_segment;
     for (int depth = 0;;) {
         const FreeFlight flight = sample_free_flight(media, ray, throughput, rng, counters);
-        radiance += flight.emitted;
+        gather(flight.emitted);
         throughput *= flight.weight;
         if (depth == 0 && first_escape != nullptr)
             *first_escape = flight.scattered ? Rgb(0.0f) : flight.weight;
         if (!flight.scattered) {
             // The camera segment's own escape is composited by the caller (T * L_surface).
             if (depth > 0 && environment != nullptr && !is_black(throughput))
-                radiance += throughput * environment->radiance(ray, rng);
+                gather(throughput * environment->radiance(ray, rng));
             break;
         }
         ++counters.scattering_events;
         const Vec3 wo = -ray.direction;
-        radiance += throughput * scattered_direct(media, lights, occlusion, flight.position,
-                                                  flight.media_mask, wo, settings, rng, counters,
-                                                  &flight.k);
+        gather(throughput * scattered_direct(media, lights, occlusion, flight.position,
+                                             flight.media_mask, wo, settings, rng, counters,
+                                             &flight.k));
         if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth)
             break;
         if (!scatter_onward(media, flight.position, flight.media_mask, flight.k, wo, depth,
-                            environment, rng, throughput, ray))
+                            environment, guiding, recorder, rng, throughput, ray))
             break;
     }
     return radiance;
@@ -77,11 +94,16 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
 Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& lights,
                           const OcclusionQuery* occlusion, const PathEnvironment* environment,
                           const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
-                          VolumeCounters& counters, Rgb* first_escape) {
+                          VolumeCounters& counters, Rgb* first_escape, const PathGuiding* guiding) {
     thread_local std::vector<TrackedCollision> points;
     const float k = static_cast<float>(settings.nee_points);
     const bool emits = media.emits();
     Rgb radiance(0.0f), throughput(1.0f);
+    GuidingPathRecorder recorder(guiding);
+    const auto gather = [&](const Rgb& contribution) {
+        radiance += contribution;
+        recorder.add(contribution);
+    };
     Ray ray = camera_segment;
     for (int depth = 0;;) {
         const bool last =
@@ -93,7 +115,7 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         float total = 0.0f;
         for (const TrackedCollision& p : points) {
             if (emits)
-                radiance += throughput * p.weight * media.emission(p.position, p.media_mask);
+                gather(throughput * p.weight * media.emission(p.position, p.media_mask));
             total += std::max(0.0f, mean(throughput * p.weight * p.k.sigma_s));
         }
         const Vec3 wo = -ray.direction;
@@ -108,16 +130,16 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
                 while (next_pick < running) {
                     next_pick += 1.0f;
                     ++counters.scattering_events;
-                    radiance += (throughput * p.weight / (k * share)) *
-                                scattered_direct(media, lights, occlusion, p.position, p.media_mask,
-                                                 wo, settings, rng, counters, &p.k);
+                    gather((throughput * p.weight / (k * share)) *
+                           scattered_direct(media, lights, occlusion, p.position, p.media_mask, wo,
+                                            settings, rng, counters, &p.k));
                 }
             }
         }
         if (last) {
             // No flight on the last segment: T^ stands for its escape.
             if (depth > 0 && environment != nullptr && !is_black(throughput * walk.transmittance))
-                radiance += throughput * walk.transmittance * environment->radiance(ray, rng);
+                gather(throughput * walk.transmittance * environment->radiance(ray, rng));
             break;
         }
         // The next vertex: the free flight drawn on the walk's collisions, continued past a
@@ -146,13 +168,13 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         }
         if (!scattered) {
             if (depth > 0 && environment != nullptr && !is_black(throughput * flight_weight))
-                radiance += throughput * flight_weight * environment->radiance(ray, rng);
+                gather(throughput * flight_weight * environment->radiance(ray, rng));
             break;
         }
         ++depth;
         throughput *= flight_weight;
-        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, rng, throughput,
-                            ray))
+        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, guiding,
+                            recorder, rng, throughput, ray))
             break;
     }
     return radiance;

@@ -5,6 +5,7 @@
 #include "core/occlusion_query.h"
 #include "core/rng.h"
 #include "lights/light.h"
+#include "volume/guiding/path_guiding.h"
 #include "volume/in_scattering.h"
 #include "volume/medium_set.h"
 
@@ -28,11 +29,14 @@ class PathEnvironment {
 /// (sample_free_flight) with next-event estimation at every scattering event; `multiple`
 /// continues each by phase sampling up to max_depth and adds what it meets in `environment`
 /// (null: nothing) when it leaves. `first_escape`, if given, receives the first flight's escape
-/// weight (an unbiased estimate of the segment's transmittance). Never throws.
+/// weight (an unbiased estimate of the segment's transmittance). `guiding`, if given, guides
+/// the scattering directions and collects training records (volume/guiding/path_guiding.h).
+/// Never throws.
 Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
                   const OcclusionQuery* occlusion, const PathEnvironment* environment,
                   const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
-                  VolumeCounters& counters, Rgb* first_escape);
+                  VolumeCounters& counters, Rgb* first_escape,
+                  const PathGuiding* guiding = nullptr);
 
 /// Volumetric path tracing with ratio tracking for in-scattering (track_collisions) on every
 /// path segment: the segment's walk gives T^(t_i) / mu at each tentative collision t_i, and
@@ -43,10 +47,11 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
 /// 1 / (nee_points c_i): unbiased, and the picks are stratified along the ray instead of one
 /// free-flight point). `multiple` continues the path from the free flight that spectral
 /// tracking draws on the same collisions (its weight, as sample_free_flight's); a flight that
-/// escapes adds what it meets beyond the media, as path_radiance.
+/// escapes adds what it meets beyond the media, as path_radiance; `guiding` as there.
 Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& lights,
                           const OcclusionQuery* occlusion, const PathEnvironment* environment,
                           const Ray& camera_segment, const VolumeSettings& settings, Pcg32& rng,
-                          VolumeCounters& counters, Rgb* first_escape);
+                          VolumeCounters& counters, Rgb* first_escape,
+                          const PathGuiding* guiding = nullptr);
 
 }  // namespace kasumi

@@ -8,7 +8,8 @@ namespace kasumi {
 VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& lights,
                              const OcclusionQuery* occlusion, const PathEnvironment* environment,
                              const Ray& ray, const VolumeSettings& settings, bool in_scatter,
-                             Pcg32& rng, VolumeCounters& counters, bool nothing_behind) {
+                             Pcg32& rng, VolumeCounters& counters, bool nothing_behind,
+                             const PathGuiding* guiding) {
     // Emitting media add light along the ray even when nothing scatters.
     in_scatter = in_scatter || media.emits();
     const bool marched_single =
@@ -21,22 +22,23 @@ VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& l
     VolumeResult result;
     if (in_scatter && settings.nee_points > 0) {
         // One walk gives the segment's transmittance and its in-scattering.
-        result.radiance = tracked_path_radiance(media, lights, occlusion, environment, ray,
-                                                settings, rng, counters, &result.transmittance);
+        result.radiance =
+            tracked_path_radiance(media, lights, occlusion, environment, ray, settings, rng,
+                                  counters, &result.transmittance, guiding);
         return result;
     }
     if (in_scatter && nothing_behind) {
         // T only feeds the transmittance AOV here: the first free flight's escape weight is an
         // unbiased estimate of it, so no separate walk through the media is needed.
         result.radiance = path_radiance(media, lights, occlusion, environment, ray, settings, rng,
-                                        counters, &result.transmittance);
+                                        counters, &result.transmittance, guiding);
         return result;
     }
     result.transmittance = estimate_transmittance(media, ray, settings.estimator,
                                                   march_step_m(media, settings), rng, counters);
     if (in_scatter) {
         result.radiance = path_radiance(media, lights, occlusion, environment, ray, settings, rng,
-                                        counters, nullptr);
+                                        counters, nullptr, guiding);
     }
     return result;
 }

@@ -21,10 +21,14 @@ namespace kasumi {
 ///   max_depth, adding what they meet in `environment` (null: nothing) when they leave.
 /// `nothing_behind`: no light arrives from beyond the segment (no surface, black background),
 /// so the transmittance is only an AOV; the trackers then take it from the first free flight's
-/// escape weight (unbiased, noisier) instead of a separate walk. Never throws.
+/// escape weight (unbiased, noisier) instead of a separate walk. `guiding`, if given, guides the
+/// tracked paths' scattering directions and collects training records
+/// (volume/guiding/path_guiding.h; the marched single-scattering paths take no directions).
+/// Never throws.
 VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& lights,
                              const OcclusionQuery* occlusion, const PathEnvironment* environment,
                              const Ray& ray, const VolumeSettings& settings, bool in_scatter,
-                             Pcg32& rng, VolumeCounters& counters, bool nothing_behind = false);
+                             Pcg32& rng, VolumeCounters& counters, bool nothing_behind = false,
+                             const PathGuiding* guiding = nullptr);
 
 }  // namespace kasumi

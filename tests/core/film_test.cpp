@@ -153,7 +153,9 @@ TEST(Film, RecycledStorageOfAnAovSubsetStartsEmpty) {
 TEST(Film, ParsesAovLists) {
     uint32_t aovs = 0;
     EXPECT_TRUE(parse_film_aovs("all", aovs));
-    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovAll));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovAll | kAovSamples));
+    EXPECT_TRUE(parse_film_aovs("samples", aovs));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovSamples));
     EXPECT_TRUE(parse_film_aovs("none", aovs));
     EXPECT_EQ(aovs, static_cast<uint32_t>(kAovNone));
     EXPECT_TRUE(parse_film_aovs("depth,albedo", aovs));
@@ -162,6 +164,24 @@ TEST(Film, ParsesAovLists) {
     EXPECT_EQ(aovs, static_cast<uint32_t>(kAovSurface | kAovVolume | kAovTransmittance));
     EXPECT_FALSE(parse_film_aovs("depth,normals", aovs));
     EXPECT_FALSE(parse_film_aovs("", aovs));
+}
+
+// samples.count holds the n of set_pixel; asking a film for an AOV it does not store gives
+// the stored ones only (a uniform render's film has no samples plane).
+TEST(Film, SampleCountPlane) {
+    Film film(2, 1, kAovDepth | kAovSamples);
+    PixelSample sum;
+    sum.radiance = Rgb(8.0f);
+    film.set_pixel(1, 0, sum, 24, 0, 0.0f);
+    const Image image = film.to_image();
+    ASSERT_NE(image.find("samples.count"), nullptr);
+    EXPECT_EQ(image.find("samples.count")->data, (std::vector<float>{0.0f, 24.0f}));
+    EXPECT_FLOAT_EQ(image.find("R")->data[1], 8.0f / 24.0f);
+    Film uniform(2, 1, kAovDepth);
+    Image some;
+    uniform.to_image(some, kAovAll | kAovSamples);
+    EXPECT_EQ(some.find("samples.count"), nullptr);
+    EXPECT_NE(some.find("depth.Z"), nullptr);
 }
 
 TEST(Film, NewFilmsOnFreshHugePageStorageStartEmpty) {
