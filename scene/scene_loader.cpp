@@ -91,7 +91,9 @@ RenderSettings parse_render(const JsonNode& node) {
         if (auto e = volume.optional("estimator")) {
             const auto estimator = estimator_from_name(e->as_string());
             if (!estimator)
-                e->fail("expected \"march\", \"delta\", \"ratio\" or \"residual-ratio\"");
+                e->fail(
+                    "expected \"march\", \"delta\", \"ratio\", \"residual-ratio\" or "
+                    "\"unbiased-march\"");
             render.volume.estimator = *estimator;
             render.volume.estimator_given = true;
         }

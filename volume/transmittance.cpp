@@ -2,6 +2,7 @@
 
 #include "volume/majorant_walk.h"
 #include "volume/march_walk.h"
+#include "volume/unbiased_march.h"
 
 #include <cmath>
 #include <cstdint>
@@ -75,18 +76,6 @@ class Collisions {
     Pcg32& m_rng;
     float m_left = -1.0f;  ///< optical depth (rate-1 units) left to the next collision
 };
-
-/// sigma_t and sigma_s at distance t on segment s: from the brick the walk named (one grid
-/// medium: no brick-table read), else summed over the segment's media.
-PointCoefficients coefficients_at(const MediumSet& media, const RayMediaQuery& query,
-                                  const MajorantSegment& s, const BrickRef* brick, float t) {
-    if (brick != nullptr) {
-        const MediumSet::FastMedium& m = media.fast(0);
-        const float d = query.density_in(0, *brick, t);
-        return {m.sigma_t * d, m.sigma_s * d};
-    }
-    return query.coefficients(t, s.media_mask);
-}
 
 Rgb march(const MediumSet& media, const Ray& ray, float step_m,
           const std::vector<MajorantSegment>& segments, Pcg32& rng, VolumeCounters& counters) {
@@ -191,13 +180,15 @@ const char* estimator_name(Estimator estimator) {
             return "ratio";
         case Estimator::ResidualRatio:
             return "residual-ratio";
+        case Estimator::UnbiasedMarch:
+            return "unbiased-march";
     }
     return "?";
 }
 
 std::optional<Estimator> estimator_from_name(const std::string& name) {
-    for (Estimator e :
-         {Estimator::March, Estimator::Delta, Estimator::Ratio, Estimator::ResidualRatio}) {
+    for (Estimator e : {Estimator::March, Estimator::Delta, Estimator::Ratio,
+                        Estimator::ResidualRatio, Estimator::UnbiasedMarch}) {
         if (name == estimator_name(e))
             return e;
     }
@@ -231,6 +222,11 @@ Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator est
         case Estimator::Ratio:
             return ratio(media, ray, false, rng, counters);
         case Estimator::ResidualRatio:
+            return ratio(media, ray, true, rng, counters);
+        case Estimator::UnbiasedMarch:
+            // An endless varying stretch has no march: residual ratio tracking covers it.
+            if (const auto t = unbiased_march_transmittance(media, ray, rng, counters))
+                return *t;
             return ratio(media, ray, true, rng, counters);
     }
     return Rgb(1.0f);
