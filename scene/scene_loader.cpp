@@ -206,7 +206,7 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCa
             MediumSet(scene.media).all_homogeneous() ? Estimator::March : Estimator::ResidualRatio;
     }
     parse_sky_keys(reader, scene.render.sky, scene.sky, scene.lights);
-    choose_integrator(with_quality, scene.media, scene.render.volume.integrator, quality);
+    choose_integrator(with_quality, scene.media, scene.render.volume, quality);
     scene.render.quality = quality;
     reader.optional("comment");  // free text for the scene's author
     reader.finish();
