@@ -3,6 +3,8 @@
 /// transmittance estimators and the free-flight samplers.
 #include "core/math.h"
 #include "core/rng.h"
+#include "volume/in_scattering.h"
+#include "volume/majorant_walk.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,5 +66,25 @@ class Collisions {
     Pcg32& m_rng;
     float m_left = -1.0f;  ///< optical depth (rate-1 units) left to the next collision
 };
+
+/// Calls at(t, segment, k, mu) at each tentative collision of the Poisson process whose rate is
+/// each segment's scalar majorant mu = max_c sigma_max along `ray` (the free-flight samplers'
+/// walk), k the coefficients there (each lookup counted), while at returns true. Returns false
+/// if at stopped the walk, true if the walk left the ray's end.
+template <class At>
+bool walk_tentative_collisions(const MediumSet& media, const RayMediaQuery& query, const Ray& ray,
+                               Pcg32& rng, VolumeCounters& counters, At&& at) {
+    Collisions collisions(rng);
+    return walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+        const float mu = max_component(s.sigma_max);
+        if (!(mu > 0.0f))
+            return true;
+        return collisions.walk(s.t0, s.t1, mu, [&](float t) {
+            const PointCoefficients k = coefficients_at(media, query, s, brick, t);
+            ++counters.density_lookups;
+            return at(t, s, k, mu);
+        });
+    });
+}
 
 }  // namespace kasumi

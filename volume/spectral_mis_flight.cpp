@@ -23,36 +23,29 @@ FreeFlight sample_free_flight_spectral_mis(const MediumSet& media, const Ray& ra
     // probability of the null choices so far, and channel c's null-collision factors of f
     // (the same numbers; dividing each by mu keeps them <= 1).
     Rgb nulls(1.0f);
-    Collisions collisions(rng);
-    const bool escaped =
-        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
-            const float mu = max_component(s.sigma_max);
-            if (!(mu > 0.0f))
-                return true;
-            return collisions.walk(s.t0, s.t1, mu, [&](float t) {
-                const PointCoefficients k = coefficients_at(media, query, s, brick, t);
-                ++counters.density_lookups;
-                const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
-                const float x = rng.next_float() * mu;
-                if (x < k.sigma_s[hero]) {
-                    // Scattering: f_lambda / F_lambda = nulls_lambda / mu; technique c's pdf
-                    // holds nulls_c sigma_s,c / mu; the common 1 / mu cancels.
-                    const float mixture = glm::dot(q, nulls * k.sigma_s);
-                    flight.scattered = mixture > 0.0f;
-                    flight.weight = flight.scattered ? nulls / mixture : Rgb(0.0f);
-                    flight.t = t;
-                    flight.position = ray.at(t);
-                    flight.media_mask = s.media_mask;
-                    flight.k = k;
-                    return false;
-                }
-                if (x < k.sigma_t[hero]) {
-                    flight.weight = Rgb(0.0f);  // absorbed: no path goes on
-                    return false;
-                }
-                nulls *= sigma_n / mu;
-                return true;
-            });
+    const bool escaped = walk_tentative_collisions(
+        media, query, ray, rng, counters,
+        [&](float t, const MajorantSegment& s, const PointCoefficients& k, float mu) {
+            const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
+            const float x = rng.next_float() * mu;
+            if (x < k.sigma_s[hero]) {
+                // Scattering: f_lambda / F_lambda = nulls_lambda / mu; technique c's pdf
+                // holds nulls_c sigma_s,c / mu; the common 1 / mu cancels.
+                const float mixture = glm::dot(q, nulls * k.sigma_s);
+                flight.scattered = mixture > 0.0f;
+                flight.weight = flight.scattered ? nulls / mixture : Rgb(0.0f);
+                flight.t = t;
+                flight.position = ray.at(t);
+                flight.media_mask = s.media_mask;
+                flight.k = k;
+                return false;
+            }
+            if (x < k.sigma_t[hero]) {
+                flight.weight = Rgb(0.0f);  // absorbed: no path goes on
+                return false;
+            }
+            nulls *= sigma_n / mu;
+            return true;
         });
     if (escaped) {
         const float mixture = glm::dot(q, nulls);

@@ -255,14 +255,9 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
     const RayMediaQuery query(media, ray);
     const bool emits = media.emits();
     FreeFlight flight;
-    Collisions collisions(rng);
-    walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
-        const float mu = max_component(s.sigma_max);
-        if (!(mu > 0.0f))
-            return true;
-        return collisions.walk(s.t0, s.t1, mu, [&](float t) {
-            const PointCoefficients k = coefficients_at(media, query, s, brick, t);
-            ++counters.density_lookups;
+    walk_tentative_collisions(
+        media, query, ray, rng, counters,
+        [&](float t, const MajorantSegment& s, const PointCoefficients& k, float mu) {
             if (emits)
                 flight.emitted +=
                     throughput * flight.weight * media.emission(ray.at(t), s.media_mask) / mu;
@@ -287,7 +282,6 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
             flight.weight *= sigma_n * ((p_s + p_n) / (mu * p_n));
             return true;
         });
-    });
     return flight;
 }
 
