@@ -59,6 +59,24 @@ TEST(SpectralMisFlight, ChromaticSlabMatchesTheClosedFormsPerChannel) {
     }
 }
 
+TEST(SpectralMisFlight, EscapeWeightsAreBoundedByTheBalanceHeuristic) {
+    // At an escape every weight is nulls_lambda / sum_c q_c nulls_c <= 1 / q_lambda: 3 with grey
+    // throughput, 1 / 0.04 for the smallest channel of throughput (1, 0.2, 0.05).
+    const MediumSet media = slab();
+    const Ray ray{Vec3(0.3f, -0.2f, -1.0f), Vec3(0.0f, 0.0f, 1.0f), 0.0f, 5.0f};
+    const Rgb throughput(1.0f, 0.2f, 0.05f);
+    const Rgb q = throughput / (throughput.r + throughput.g + throughput.b);
+    for (uint64_t i = 0; i < 20000; ++i) {
+        Pcg32 rng(41, i);
+        VolumeCounters counters;
+        const FreeFlight f = sample_free_flight_spectral_mis(media, ray, throughput, rng, counters);
+        if (f.scattered)
+            continue;
+        for (int c = 0; c < 3; ++c)
+            ASSERT_LE(f.weight[c], (1.0f + 1e-5f) / q[c]) << "channel " << c;
+    }
+}
+
 TEST(SpectralMisFlight, GreyMediaGiveUnitWeights) {
     // Equal channels: every technique has the same pdf, so the weights are exactly 1 (escape)
     // and 1 / sigma_s (scattering): delta tracking.
