@@ -36,7 +36,9 @@ namespace {
 //   always), every camera sample is a shadow ray through it, and unbiased-march won at every
 //   spp of the cloud.json single-scattering studies (96x54, reference 4096 spp, 2026-12-04):
 //   efficiency 844 /s at 4 spp against 295 ratio and 357 residual ratio; 1350 against 133
-//   (residual ratio) at 16; 672 against 134 at 64; 115 against 84 (ratio) at 256.
+//   (residual ratio) at 16; 672 against 134 at 64; 115 against 84 (ratio) at 256. On the WDAS
+//   cloud (single scattering, 96x54) the win is smaller: 1070 against 918 (ratio) at 4 spp,
+//   1800 against 1020 at 16.
 // - light_samples: in fog (soft-shadow study, docs/studies/soft-shadows) the march dominates
 //   the time, and 4 shadow samples per light cut the error 5-15% against 1 for no measurable
 //   time (4 spp: 1 sample 1.84 s, 0.0080; 4 samples 1.79 s, 0.0069); 16 cost 30% more time
