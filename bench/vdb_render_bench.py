@@ -75,6 +75,11 @@ CONFIGS = [
     # (render.volume.nee_points, docs/volumes.md): the README's 1.74x row (--configs 7).
     ("residual-ratio, 4 next-event points",
      {"integrator": "single", "estimator": "residual-ratio", "nee_points": 4}, True),
+    # Unbiased ray marching (Kettunen et al. 2021) for the shadow rays' transmittance
+    # (docs/volumes.md): --configs 8,9.
+    ("unbiased-march", {"integrator": "single", "estimator": "unbiased-march"}, True),
+    ("unbiased-march, 4 next-event points",
+     {"integrator": "single", "estimator": "unbiased-march", "nee_points": 4}, True),
 ]
 
 

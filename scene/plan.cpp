@@ -65,6 +65,11 @@ std::string estimator_summary(const SceneDesc& scene) {
         case Estimator::ResidualRatio:
             text += ", residual ratio tracking against the minorant (unbiased)";
             break;
+        case Estimator::UnbiasedMarch:
+            text += homogeneous ? ", exact Beer-Lambert per stretch"
+                                : ", debiased jittered march against the minorant (unbiased, "
+                                  "signed single estimates)";
+            break;
     }
     const bool grids = std::any_of(scene.media.begin(), scene.media.end(), [](const Medium& m) {
         return std::holds_alternative<VdbMedium>(m.model);

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "volume/medium.h"
+#include "volume/transmittance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,16 @@ namespace {
 //   reference setting.
 // - grid_estimator, cloud estimator study (docs/studies/cloud-estimator): ratio tracking has
 //   the lowest error and the best efficiency at 16 spp (59 /s; residual ratio 39, delta 34,
-//   march 1.9).
+//   march 1.9). In multiple scattering unbiased-march lost (cloud.json 96x54, 2026-12-04:
+//   efficiency 74 / 105 / 139 /s at 4 / 16 / 64 spp against residual ratio's 149 / 143 / 204;
+//   docs/volumes.md), so grid_estimator stays ratio.
+// - grid_single_estimator: where the level chooses single scattering for a cloud (draft
+//   always), every camera sample is a shadow ray through it, and unbiased-march won at every
+//   spp of the cloud.json single-scattering studies (96x54, reference 4096 spp, 2026-12-04):
+//   efficiency 844 /s at 4 spp against 295 ratio and 357 residual ratio; 1350 against 133
+//   (residual ratio) at 16; 672 against 134 at 64; 115 against 84 (ratio) at 256. On the WDAS
+//   cloud (single scattering, 96x54) the win is smaller: 1070 against 918 (ratio) at 4 spp,
+//   1800 against 1020 at 16.
 // - light_samples: in fog (soft-shadow study, docs/studies/soft-shadows) the march dominates
 //   the time, and 4 shadow samples per light cut the error 5-15% against 1 for no measurable
 //   time (4 spp: 1 sample 1.84 s, 0.0080; 4 samples 1.79 s, 0.0069); 16 cost 30% more time
@@ -62,11 +72,13 @@ namespace {
 //   0.088 at 1 / 4 / 16 spp: 1/spp), and 1.37 / 256 for reference.
 constexpr QualityPreset kTable[] = {
     {QualityLevel::Draft, 4, 1.6, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008, 4.0, "march",
-     0.000244},
-    {QualityLevel::Default, 16, 1.6, "ratio", 4, 0.1, 0.00134, 0.0358, 0.0073, 4.0, "march", 0.088},
-    {QualityLevel::Final, 64, 1.6, "ratio", 4, 0.02, 0.000335, 0.009, 0.0073, 4.0, "march", 0.022},
+     0.000244, "unbiased-march"},
+    {QualityLevel::Default, 16, 1.6, "ratio", 4, 0.1, 0.00134, 0.0358, 0.0073, 4.0, "march", 0.088,
+     "unbiased-march"},
+    {QualityLevel::Final, 64, 1.6, "ratio", 4, 0.02, 0.000335, 0.009, 0.0073, 4.0, "march", 0.022,
+     "unbiased-march"},
     {QualityLevel::Reference, 256, 0.2, "ratio", 16, 0.0, 8.9e-5, 0.0028, 0.00023, 1.0, "march",
-     0.0054},
+     0.0054, "unbiased-march"},
 };
 
 bool is_extended_light(const Json& light) {
@@ -265,7 +277,7 @@ std::string scattering_bound_text(const ScatteringBound& b) {
 }
 
 void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& media,
-                       VolumeIntegrator& integrator, QualityChoice& choice) {
+                       VolumeSettings& volume, QualityChoice& choice) {
     if (!choice.level)
         return;
     if (doc.contains("/render/volume/integrator")) {
@@ -279,11 +291,23 @@ void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& medi
     }
     const double tolerance = quality_preset(*choice.level).single_scattering_tolerance;
     const bool single = b.bound <= tolerance;
-    integrator = single ? VolumeIntegrator::Single : VolumeIntegrator::Multiple;
+    volume.integrator = single ? VolumeIntegrator::Single : VolumeIntegrator::Multiple;
     choice.integrator = std::string(single ? "single" : "multiple") + " scattering chosen by " +
                         quality_name(*choice.level) + " (tolerance " +
                         (std::isinf(tolerance) ? std::string("any") : g3(100.0 * tolerance) + "%") +
                         "): " + scattering_bound_text(b);
+    const bool grid = std::any_of(media.begin(), media.end(), [](const Medium& m) {
+        return std::holds_alternative<VdbMedium>(m.model);
+    });
+    const auto applied = std::find_if(
+        choice.applied.begin(), choice.applied.end(),
+        [](const std::string& a) { return a.rfind("/render/volume/estimator = ", 0) == 0; });
+    const auto estimator = estimator_from_name(quality_preset(*choice.level).grid_single_estimator);
+    if (single && grid && applied != choice.applied.end() && estimator) {
+        volume.estimator = *estimator;
+        *applied = std::string("/render/volume/estimator = \"") + estimator_name(*estimator) +
+                   "\" (with single scattering)";
+    }
 }
 
 }  // namespace kasumi

@@ -37,6 +37,9 @@ struct QualityPreset {
     double height_fog_step_m;
     const char* height_fog_estimator;  ///< render.volume.estimator, with height fog (no grid)
     double height_fog_rel_mse;         ///< height-fog studies (fog_height.json)
+    /// render.volume.estimator with VDB media when the level chooses single scattering
+    /// (replaces grid_estimator there; choose_integrator)
+    const char* grid_single_estimator;
 };
 
 const QualityPreset& quality_preset(QualityLevel level);
@@ -81,8 +84,11 @@ ScatteringBound scattering_bound(const std::vector<Medium>& media);
 /// With a quality level and no /render/volume/integrator in `doc`: single scattering when
 /// scattering_bound(media).bound is within the level's tolerance, else multiple. Records the
 /// reason in choice.integrator. Without a level, or with the integrator given, leaves it.
+/// When it chooses single scattering for VDB media and the level (not the scene) set the
+/// estimator, the estimator becomes the level's grid_single_estimator (recorded in
+/// choice.applied).
 void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& media,
-                       VolumeIntegrator& integrator, QualityChoice& choice);
+                       VolumeSettings& volume, QualityChoice& choice);
 
 /// Text for the plan: "omega = 0.93, tau = 1.3: single scattering leaves out <= 150% ...".
 std::string scattering_bound_text(const ScatteringBound& b);

@@ -126,7 +126,9 @@ RenderSettings parse_render(const JsonNode& node) {
         if (auto e = volume.optional("estimator")) {
             const auto estimator = estimator_from_name(e->as_string());
             if (!estimator)
-                e->fail("expected \"march\", \"delta\", \"ratio\" or \"residual-ratio\"");
+                e->fail(
+                    "expected \"march\", \"delta\", \"ratio\", \"residual-ratio\" or "
+                    "\"unbiased-march\"");
             render.volume.estimator = *estimator;
             render.volume.estimator_given = true;
         }
@@ -241,7 +243,7 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCa
             MediumSet(scene.media).all_homogeneous() ? Estimator::March : Estimator::ResidualRatio;
     }
     parse_sky_keys(reader, scene.render.sky, scene.sky, scene.lights);
-    choose_integrator(with_quality, scene.media, scene.render.volume.integrator, quality);
+    choose_integrator(with_quality, scene.media, scene.render.volume, quality);
     scene.render.quality = quality;
     reader.optional("comment");  // free text for the scene's author
     reader.finish();

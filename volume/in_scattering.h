@@ -24,6 +24,7 @@ enum class Estimator {
     Delta,          ///< delta tracking: unbiased, binary (0 or 1) per channel
     Ratio,          ///< ratio tracking (Novák et al. 2014): unbiased
     ResidualRatio,  ///< residual ratio tracking with the minorant as control: unbiased
+    UnbiasedMarch,  ///< debiased jittered march (Kettunen et al. 2021): unbiased, signed
 };
 
 /// How light scattered in media reaches the camera.

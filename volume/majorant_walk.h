@@ -111,4 +111,16 @@ bool walk_majorants(const MediumSet& media, const Ray& ray, Visit&& visit) {
     return true;
 }
 
+/// sigma_t and sigma_s at distance t on segment s of a walk: from the brick the walk named (one
+/// grid medium: no brick-table read), else summed over the segment's media.
+inline PointCoefficients coefficients_at(const MediumSet& media, const RayMediaQuery& query,
+                                         const MajorantSegment& s, const BrickRef* brick, float t) {
+    if (brick != nullptr) {
+        const MediumSet::FastMedium& m = media.fast(0);
+        const float d = query.density_in(0, *brick, t);
+        return {m.sigma_t * d, m.sigma_s * d};
+    }
+    return query.coefficients(t, s.media_mask);
+}
+
 }  // namespace kasumi

@@ -2,6 +2,8 @@
 
 #include "volume/majorant_walk.h"
 #include "volume/march_walk.h"
+#include "volume/poisson_collisions.h"
+#include "volume/unbiased_march.h"
 
 #include <cmath>
 #include <cstdint>
@@ -20,72 +22,6 @@ constexpr double kUnderflowDepth = 110.0;
 
 float mean(const Rgb& c) {
     return (c.r + c.g + c.b) * (1.0f / 3.0f);
-}
-
-/// std::nextafter(t, +inf) without the libm call for the usual t > 0 (an integer step of the
-/// bit pattern is the adjacent float of the same sign; Ray Tracing Gems, ch. 6); it was 2% of a
-/// multiple-scattering render's CPU time.
-float next_float_up(float t) {
-    if (!(t > 0.0f && t < kInfinity))
-        return std::nextafter(t, kInfinity);
-    uint32_t bits;
-    std::memcpy(&bits, &t, sizeof bits);
-    ++bits;
-    std::memcpy(&t, &bits, sizeof t);
-    return t;
-}
-
-/// A unit exponential variate; u in [0, 1) is a multiple of 2^-24, so 1 - u is exact and > 0.
-float unit_exponential(Pcg32& rng) {
-    return -std::log(1.0f - rng.next_float());
-}
-
-/// The tentative collisions of a Poisson process whose rate is piecewise constant (each majorant
-/// segment's mu in turn), sampled in optical depth: each collision draws one unit exponential
-/// E and the segments consume it, the collision lying where the integral of mu reaches E.
-/// Exact for any sequence of segments, and a segment's end costs no random number (restarting
-/// the process at every segment, also exact by memorylessness, drew one variate per segment
-/// only to throw it away at the segment's end).
-class Collisions {
-  public:
-    explicit Collisions(Pcg32& rng) : m_rng(rng) {}
-
-    /// Calls at(t) at each collision in [t0, t1) of rate mu > 0, in order, while it returns
-    /// true. Returns false if `at` stopped the walk.
-    template <class At>
-    bool walk(float t0, float t1, float mu, At&& at) {
-        if (m_left < 0.0f)
-            m_left = unit_exponential(m_rng);  // drawn on the first segment that has a rate
-        for (float t = t0;;) {
-            const float depth = std::max(t1 - t, 0.0f) * mu;
-            if (!(m_left < depth)) {
-                m_left -= depth;
-                return true;
-            }
-            // A gap below t's float resolution (mu ulp(t) >> 1) would leave t where it is, and
-            // where sigma(t) = 0 the walk would never end: advance t by at least one ulp.
-            t = std::max(t + m_left / mu, next_float_up(t));
-            m_left = unit_exponential(m_rng);
-            if (!at(t))
-                return false;
-        }
-    }
-
-  private:
-    Pcg32& m_rng;
-    float m_left = -1.0f;  ///< optical depth (rate-1 units) left to the next collision
-};
-
-/// sigma_t and sigma_s at distance t on segment s: from the brick the walk named (one grid
-/// medium: no brick-table read), else summed over the segment's media.
-PointCoefficients coefficients_at(const MediumSet& media, const RayMediaQuery& query,
-                                  const MajorantSegment& s, const BrickRef* brick, float t) {
-    if (brick != nullptr) {
-        const MediumSet::FastMedium& m = media.fast(0);
-        const float d = query.density_in(0, *brick, t);
-        return {m.sigma_t * d, m.sigma_s * d};
-    }
-    return query.coefficients(t, s.media_mask);
 }
 
 Rgb march(const MediumSet& media, const Ray& ray, float step_m,
@@ -191,13 +127,15 @@ const char* estimator_name(Estimator estimator) {
             return "ratio";
         case Estimator::ResidualRatio:
             return "residual-ratio";
+        case Estimator::UnbiasedMarch:
+            return "unbiased-march";
     }
     return "?";
 }
 
 std::optional<Estimator> estimator_from_name(const std::string& name) {
-    for (Estimator e :
-         {Estimator::March, Estimator::Delta, Estimator::Ratio, Estimator::ResidualRatio}) {
+    for (Estimator e : {Estimator::March, Estimator::Delta, Estimator::Ratio,
+                        Estimator::ResidualRatio, Estimator::UnbiasedMarch}) {
         if (name == estimator_name(e))
             return e;
     }
@@ -231,6 +169,11 @@ Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator est
         case Estimator::Ratio:
             return ratio(media, ray, false, rng, counters);
         case Estimator::ResidualRatio:
+            return ratio(media, ray, true, rng, counters);
+        case Estimator::UnbiasedMarch:
+            // An endless varying stretch has no march: residual ratio tracking covers it.
+            if (const auto t = unbiased_march_transmittance(media, ray, rng, counters))
+                return *t;
             return ratio(media, ray, true, rng, counters);
     }
     return Rgb(1.0f);
@@ -312,14 +255,9 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
     const RayMediaQuery query(media, ray);
     const bool emits = media.emits();
     FreeFlight flight;
-    Collisions collisions(rng);
-    walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
-        const float mu = max_component(s.sigma_max);
-        if (!(mu > 0.0f))
-            return true;
-        return collisions.walk(s.t0, s.t1, mu, [&](float t) {
-            const PointCoefficients k = coefficients_at(media, query, s, brick, t);
-            ++counters.density_lookups;
+    walk_tentative_collisions(
+        media, query, ray, rng, counters,
+        [&](float t, const MajorantSegment& s, const PointCoefficients& k, float mu) {
             if (emits)
                 flight.emitted +=
                     throughput * flight.weight * media.emission(ray.at(t), s.media_mask) / mu;
@@ -344,7 +282,6 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
             flight.weight *= sigma_n * ((p_s + p_n) / (mu * p_n));
             return true;
         });
-    });
     return flight;
 }
 

@@ -11,7 +11,7 @@
 
 namespace kasumi {
 
-/// Scene-file names: "march", "delta", "ratio", "residual-ratio".
+/// Scene-file names: "march", "delta", "ratio", "residual-ratio", "unbiased-march".
 const char* estimator_name(Estimator estimator);
 std::optional<Estimator> estimator_from_name(const std::string& name);
 
@@ -20,9 +20,11 @@ std::optional<Estimator> estimator_from_name(const std::string& name);
 float march_step_m(const MediumSet& media, const VolumeSettings& settings);
 
 /// An estimate of the transmittance exp(-integral of sigma_t) over [ray.t_min, ray.t_max] per
-/// channel, in [0, 1]. Unbiased for Delta, Ratio, ResidualRatio; March (step `step_m`, offset
-/// jittered per call) is biased by O(step²) where the density is smooth, and exact (the closed
-/// form, MediumSet::transmittance) when every medium has one. Never throws.
+/// channel, in [0, 1] except for UnbiasedMarch, whose single estimates are signed and may exceed
+/// 1 (their mean is in [0, 1]; volume/unbiased_march.h). Unbiased for Delta, Ratio,
+/// ResidualRatio, UnbiasedMarch; March (step `step_m`, offset jittered per call) is biased by
+/// O(step²) where the density is smooth, and exact (the closed form, MediumSet::transmittance)
+/// when every medium has one. Never throws.
 Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator estimator,
                            float step_m, Pcg32& rng, VolumeCounters& counters);
 

@@ -446,7 +446,7 @@ grep -qiE "nan|inf|null" "$work/stdout" && fail "probe transmittance step_m 1e-3
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['media']=d['media'][1:]; json.dump(d, open(sys.argv[2], 'w'))" \
   "$s/all.json" "$s/cloud_only.json"
 for scale in 1e6 1e30; do
-  for est in delta ratio residual-ratio; do
+  for est in delta ratio residual-ratio unbiased-march; do
     for integ in single multiple; do
       bounded 120 render "$s/cloud_only.json" --set /media/0/density_scale=$scale --set "/render/volume/estimator=\"$est\"" \
         --set "/render/volume/integrator=\"$integ\"" --res 4x3 -o "$work/x/dense.exr" --no-preview -v

@@ -31,7 +31,7 @@ grep -q "VDB grid" "$work/stdout" || fail "plan does not mention the grid: $(cat
 grep -q "residual-ratio" "$work/stdout" || fail "plan does not state the default estimator"
 
 # Homogeneous box of sigma_t 0.05 crossed over 20 m: T = exp(-1) for every estimator.
-for e in march delta ratio residual-ratio; do
+for e in march delta ratio residual-ratio unbiased-march; do
   expect_exit 0 "" -- probe transmittance "$work/cloud.json" --from -15,0,0 --to 15,0,0 --estimator $e --samples 4000
   ok=$(json_field "$work/stdout" "abs(j['transmittance'][0] - 0.36787944) <= 4 * j['stderr'][0] + 1e-5 and j['estimator'] == '$e' and j['samples'] == 4000 and len(j['stderr']) == 3")
   [ "$ok" = "True" ] || fail "probe transmittance --estimator $e: $(cat "$work/stdout")"

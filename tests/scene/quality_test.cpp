@@ -4,11 +4,14 @@
 #include "core/error.h"
 #include "scene/plan.h"
 #include "scene/scene_loader.h"
+#include "volume/grid/density_grid.h"
 #include "volume/medium.h"
+#include "volume/transmittance.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 namespace kasumi {
 namespace {
@@ -186,9 +189,10 @@ TEST(ScatteringBound, ChoosesSingleOnlyWithinTolerance) {
     auto choose = [](const char* doc_text, const std::vector<Medium>& media) {
         SceneDocument doc(parse_json_text(doc_text, "t.json"), "t.json");
         QualityChoice c = apply_quality(doc);
-        VolumeIntegrator integrator = VolumeIntegrator::Single;
-        choose_integrator(doc, media, integrator, c);
-        return integrator;
+        VolumeSettings volume;
+        volume.integrator = VolumeIntegrator::Single;
+        choose_integrator(doc, media, volume, c);
+        return volume.integrator;
     };
     EXPECT_EQ(choose(R"({"render": {"quality": "default"}})", thin), VolumeIntegrator::Single);
     EXPECT_EQ(choose(R"({"render": {"quality": "default"}})", thick), VolumeIntegrator::Multiple);
@@ -199,6 +203,46 @@ TEST(ScatteringBound, ChoosesSingleOnlyWithinTolerance) {
                      thick),
               VolumeIntegrator::Single);
     EXPECT_EQ(choose(R"({"render": {}})", thick), VolumeIntegrator::Single);
+}
+
+TEST(ScatteringBound, SingleScatteredCloudsTakeTheLevelsSingleScatteringEstimator) {
+    // A thick cloud: draft chooses single scattering and, with the estimator left to the level,
+    // the level's grid_single_estimator; default chooses multiple and keeps grid_estimator; an
+    // estimator the scene gives is kept.
+    auto grid = std::make_shared<DensityGrid>(IVec3(0), IVec3(15));
+    for (int z = 0; z < 16; ++z)
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                grid->set(IVec3(x, y, z), 1.0f);
+    grid->finalize();
+    VdbMedium v;
+    v.grid = grid;
+    v.sigma_s_per_density = Rgb(2.0f);
+    v.bounds_world = Bounds3{Vec3(0.0f), Vec3(15.0f)};
+    const std::vector<Medium> cloud{Medium{"cloud", v}};
+    auto choose = [&](const std::string& render) {
+        const std::string text =
+            R"({"media": [{"type": "vdb", "file": "x.vdb"}], "render": )" + render + "}";
+        SceneDocument doc(parse_json_text(text, "t.json"), "t.json");
+        QualityChoice c = apply_quality(doc);
+        VolumeSettings volume;
+        volume.estimator =
+            *estimator_from_name(doc.get("/render/volume/estimator").get<std::string>());
+        choose_integrator(doc, cloud, volume, c);
+        return volume;
+    };
+    const VolumeSettings draft = choose(R"({"quality": "draft"})");
+    EXPECT_EQ(draft.integrator, VolumeIntegrator::Single);
+    EXPECT_STREQ(estimator_name(draft.estimator),
+                 quality_preset(QualityLevel::Draft).grid_single_estimator);
+    const VolumeSettings by_default = choose(R"({"quality": "default"})");
+    EXPECT_EQ(by_default.integrator, VolumeIntegrator::Multiple);
+    EXPECT_STREQ(estimator_name(by_default.estimator),
+                 quality_preset(QualityLevel::Default).grid_estimator);
+    const VolumeSettings given =
+        choose(R"({"quality": "draft", "volume": {"estimator": "delta"}})");
+    EXPECT_EQ(given.integrator, VolumeIntegrator::Single);
+    EXPECT_EQ(given.estimator, Estimator::Delta);
 }
 
 }  // namespace

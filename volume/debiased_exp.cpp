@@ -1,0 +1,103 @@
+#include "volume/debiased_exp.h"
+
+#include <array>
+#include <cmath>
+
+namespace kasumi {
+
+namespace {
+
+constexpr double kStopAtZero = 0.9;    ///< p_z: the roulette stops at order 0
+constexpr int kAlwaysTaken = 2;        ///< K: orders 1..K follow once order 0 is passed
+constexpr double kContinuation = 2.0;  ///< c: past K, order k follows with min(1, c / k)
+
+/// P(N >= k) for k = 0..kMaxSeriesOrder, computed once.
+const std::array<double, kMaxSeriesOrder + 1>& survival_table() {
+    static const std::array<double, kMaxSeriesOrder + 1> table = [] {
+        std::array<double, kMaxSeriesOrder + 1> p{};
+        p[0] = 1.0;
+        for (int k = 1; k <= kMaxSeriesOrder; ++k)
+            p[k] =
+                k <= kAlwaysTaken ? 1.0 - kStopAtZero : p[k - 1] * std::min(1.0, kContinuation / k);
+        return p;
+    }();
+    return table;
+}
+
+}  // namespace
+
+double series_order_survival(int k) {
+    if (k < 0)
+        return 1.0;
+    return k <= kMaxSeriesOrder ? survival_table()[k] : 0.0;
+}
+
+double expected_series_order() {
+    // E[N] = sum_{k >= 1} P(N >= k).
+    double sum = 0.0;
+    for (int k = 1; k <= kMaxSeriesOrder; ++k)
+        sum += survival_table()[k];
+    return sum;
+}
+
+int sample_series_order(float u) {
+    const auto& p = survival_table();
+    int n = 0;
+    while (n < kMaxSeriesOrder && p[n + 1] > u)
+        ++n;
+    return n;
+}
+
+DVec3 debiased_exp(const std::vector<DVec3>& tau_hat) {
+    const int count = static_cast<int>(tau_hat.size());
+    if (count == 0)
+        return DVec3(0.0);
+    const int n = count - 1;
+    const auto& p = survival_table();
+    // 1 / (k! P(N >= k)): the series coefficient over the probability of reaching order k.
+    std::array<double, kMaxSeriesOrder + 1> coefficient{};
+    double factorial = 1.0;
+    for (int k = 0; k <= n; ++k) {
+        factorial *= std::max(k, 1);
+        coefficient[k] = 1.0 / (factorial * p[k]);
+    }
+    DVec3 result(0.0);
+    for (int c = 0; c < 3; ++c) {
+        bool finite = true;
+        for (const DVec3& t : tau_hat)
+            finite = finite && t[c] < HUGE_VAL;
+        if (!finite)
+            continue;  // exp(-inf) = 0, and the differences inf - inf would be NaN
+        double sum = 0.0;
+        for (int j = 0; j < count; ++j) {
+            const double pivot = tau_hat[j][c];
+            // Elementary symmetric means m_k of the differences x_i = pivot - tau^_i, i != j,
+            // built one x at a time: after i values, m_k = e_k / C(i, k), and adding x gives
+            // m_k += (k / i) (m_{k-1} x - m_k) (from e_k' = e_k + x e_{k-1}). Means stay of the
+            // order of x^k where the sums e_k would grow by binomial factors.
+            std::array<double, kMaxSeriesOrder + 1> m{};
+            m[0] = 1.0;
+            int seen = 0;
+            for (int i = 0; i < count; ++i) {
+                if (i == j)
+                    continue;
+                ++seen;
+                const double x = pivot - tau_hat[i][c];
+                for (int k = seen; k >= 1; --k)
+                    m[k] += (static_cast<double>(k) / seen) * (m[k - 1] * x - m[k]);
+            }
+            double series = 0.0;
+            for (int k = 0; k <= n; ++k)
+                series += m[k] * coefficient[k];
+            // exp(-pivot) underflows to 0 for pivot > ~745: skip the term rather than risk
+            // 0 * inf should a (vanishingly rare) high order overflow the series.
+            const double weight = std::exp(-pivot);
+            if (weight > 0.0)
+                sum += weight * series;
+        }
+        result[c] = sum / count;
+    }
+    return result;
+}
+
+}  // namespace kasumi

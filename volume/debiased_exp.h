@@ -1,0 +1,41 @@
+#pragma once
+/// An unbiased estimate of exp(-tau) from independent unbiased estimates tau^_0..tau^_N of an
+/// optical depth tau (Kettunen, d'Eon, Pantaleoni & Novák 2021, "An unbiased ray-marching
+/// transmittance estimator", ACM TOG 40(4)): the power series of exp around a pivot,
+///   exp(-tau) = exp(-tau_p) sum_k (tau_p - tau)^k / k!,
+/// with the order truncated at a random N (Russian roulette on the order, each term k divided by
+/// P(N >= k)) and (tau_p - tau)^k estimated by the mean of the products of k distinct
+/// differences tau_p - tau^_i (the elementary symmetric mean, a U-statistic: unbiased because
+/// the estimates are independent). Every estimate serves as the pivot in turn and the N + 1
+/// results are averaged. When all estimates agree (a constant medium, a deterministic depth)
+/// every correction is exactly 0 and the result is exp(-tau^): zero variance.
+#include "core/math.h"
+
+#include <vector>
+
+namespace kasumi {
+
+/// The roulette never continues past this order. P(N >= 64) is below 1e-80 (the continuation
+/// probability is 2/k), so the truncation's bias is far below float resolution.
+constexpr int kMaxSeriesOrder = 64;
+
+/// P(N >= k) of the order roulette: Kettunen et al.'s "aggressive" Bhanot-Kennedy roulette,
+/// which stops at order 0 with probability p_z = 0.9, else takes orders 1 and 2 (K = 2) and
+/// continues past order k - 1 with probability min(1, c / k), c = 2. 0 past kMaxSeriesOrder.
+double series_order_survival(int k);
+
+/// E[N] of the roulette (about 0.319): an unbiased-march transmittance costs E[N] + 1 optical
+/// depth estimates on average.
+double expected_series_order();
+
+/// N, drawn by inversion from u in [0, 1): the largest k with P(N >= k) > u.
+int sample_series_order(float u);
+
+/// The debiased exp(-tau) per channel from tau_hat (size N + 1, N drawn by sample_series_order):
+/// its expectation is exp(-tau) when the estimates are independent, unbiased estimates of tau.
+/// The estimate is signed and unbounded above (a correction can be negative or push it past 1);
+/// its mean lies in [0, 1]. A channel where an estimate is +inf (an endless opaque stretch)
+/// is 0. Never throws, never NaN for finite or +inf input.
+DVec3 debiased_exp(const std::vector<DVec3>& tau_hat);
+
+}  // namespace kasumi
