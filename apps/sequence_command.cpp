@@ -33,6 +33,8 @@ struct Options {
     std::string output;
     std::string preview_dir;
     std::string contact_sheet;
+    std::string movie;
+    double fps = 24.0;
     bool no_contact_sheet = false;
     bool contact_sheet_only = false;
     bool skip_existing = true;
@@ -103,6 +105,14 @@ void run(const Options& o) {
                                   : o.contact_sheet;
         }
     }
+    if (!o.movie.empty()) {
+        if (o.frame >= 0)
+            throw Error(ErrorKind::Usage,
+                        "--movie needs the whole --frames range, not one --frame (run `kasumi "
+                        "movie` after the farm's tasks)");
+        s.movie = o.movie;
+        s.movie_fps = o.fps;
+    }
     if (o.frame >= 0 && !o.contact_sheet.empty())
         s.contact_sheet = o.contact_sheet;
     s.render = !o.contact_sheet_only;
@@ -165,6 +175,11 @@ void add_sequence_command(CLI::App& root) {
                                   "<name>contact_sheet.png)");
     cmd->add_flag("--no-contact-sheet", o->no_contact_sheet, "write no contact sheet")
         ->excludes(sheet);
+    cmd->add_option("--movie", o->movie,
+                    "also encode the frames to this H.264 movie (.mp4) with ffmpeg, through the "
+                    "previews' view and exposure");
+    cmd->add_option("--fps", o->fps, "movie frames per second (default 24)")
+        ->check(CLI::Range(0.001, 1000.0));
     cmd->add_flag("--contact-sheet-only", o->contact_sheet_only,
                   "render nothing: build the contact sheet from the EXRs on disk");
     cmd->add_flag("--skip-existing,!--no-skip-existing", o->skip_existing,

@@ -2,9 +2,16 @@
 
 #include "core/error.h"
 
+#include <cstdio>
 #include <filesystem>
 
 namespace kasumi {
+
+std::string exposure_text(float stops) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", static_cast<double>(stops));
+    return text;
+}
 
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
                          uint32_t& aovs, ExrCompression& compression) {
@@ -52,6 +59,8 @@ std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRunti
         {"render_seconds", std::to_string(result.seconds)},
         {"units", "scene-linear Rec.709, luminance in cd/m2"},
         {"interrupted", result.interrupted ? "true" : "false"},
+        {"preview/view", desc.render.preview.view},
+        {"preview/exposure_stops", exposure_text(desc.render.preview.exposure_stops)},
         {"stats/camera_rays", std::to_string(c.camera_rays)},
         {"stats/surface_shadow_rays", std::to_string(c.surface_shadow_rays)},
         {"stats/shadow_rays_avoided", std::to_string(c.shadow_rays_avoided)},

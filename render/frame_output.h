@@ -33,6 +33,9 @@ struct OutputPaths {
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
                          uint32_t& aovs, ExrCompression& compression);
 
+/// `stops` as the kasumi/preview/exposure_stops metadata holds it (shortest exact text).
+std::string exposure_text(float stops);
+
 /// Creates the parent directories of `path`; throws an output error naming the directory.
 void make_parent_dirs(const std::string& path);
 
@@ -41,8 +44,9 @@ PreviewSettings preview_settings(const SceneDesc& desc);
 
 /// The EXR metadata of frame `frame` rendered from `scene` (keys without the kasumi/ prefix that
 /// write_exr adds): version, scene, frame, spp, seed, render_seconds, units, interrupted, the
-/// render counters as stats/*, and stage_metadata(times, plan) (time/<stage>_s, plan/ran,
-/// plan/skipped). The same keys for every command that renders.
+/// preview's view and exposure (preview/view, preview/exposure_stops: what `kasumi movie` tone
+/// maps the frame with), the render counters as stats/*, and stage_metadata(times, plan)
+/// (time/<stage>_s, plan/ran, plan/skipped). The same keys for every command that renders.
 std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRuntime& scene,
                                                                 const RenderResult& result,
                                                                 int64_t frame,

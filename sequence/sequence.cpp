@@ -7,6 +7,7 @@
 #include "render/frame_output.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "sequence/movie.h"
 #include "sequence/sequence_contact_sheet.h"
 #include "sequence/sequence_writer.h"
 
@@ -350,6 +351,15 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         make_parent_dirs(options.contact_sheet);
         write_preview_png(make_contact_sheet(cells), options.contact_sheet, sheet_preview);
         summary.contact_sheet = options.contact_sheet;
+    }
+    if (!options.movie.empty() && !summary.interrupted && !options.frames.empty()) {
+        MovieOptions movie;
+        movie.pattern = options.output_pattern;
+        movie.frames = options.frames;
+        movie.path = options.movie;
+        movie.fps = options.movie_fps;
+        movie.log = options.log;
+        summary.movie = write_movie(movie).path;
     }
     summary.seconds = seconds_since(run_start);
     return summary;
