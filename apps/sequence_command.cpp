@@ -143,6 +143,13 @@ void run(const Options& o) {
             }
             std::fprintf(stderr, "\nsequence: over the run: %s\n",
                          reuse_text(summary.reuse).c_str());
+            if (summary.meter_renders > 0) {
+                std::fprintf(stderr,
+                             "sequence: auto exposure: %zu meter renders in %.2f s (%.3f s "
+                             "each)\n",
+                             summary.meter_renders, summary.meter_seconds,
+                             summary.meter_seconds / static_cast<double>(summary.meter_renders));
+            }
         }
         if (!summary.contact_sheet.empty()) {
             std::fprintf(stderr, "contact sheet: %s (%zu frames, %zu missing)\n",

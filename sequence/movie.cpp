@@ -23,8 +23,7 @@ namespace fs = std::filesystem;
 /// The view and exposure the frame's preview was written with (kasumi/preview/* metadata);
 /// frames without them (written before the keys existed) get the config's default view and 0.
 PreviewSettings frame_preview(const Image& frame, const std::string& path) {
-    PreviewSettings preview;
-    preview.config_path = default_ocio_config_path();
+    PreviewSettings preview;  // the default OCIO config
     if (const std::string* view = frame.find_metadata("preview/view"))
         preview.view = *view;
     if (const std::string* stops = frame.find_metadata("preview/exposure_stops")) {

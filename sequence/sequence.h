@@ -75,6 +75,8 @@ struct SequenceSummary {
     double render_seconds = 0.0;  ///< sum of render_image times
     double write_seconds = 0.0;   ///< sum of the frames' write times (preview, EXR, thumbnail)
     bool interrupted = false;     ///< cancelled: the frame in flight was not written
+    size_t meter_renders = 0;     ///< auto exposure's meter renders (sequence/auto_exposure.h)
+    double meter_seconds = 0.0;   ///< their wall time
     ReuseCounts reuse;
     std::string contact_sheet;  ///< written path, or empty
     std::string movie;          ///< written path, or empty

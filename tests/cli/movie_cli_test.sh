@@ -41,7 +41,7 @@ expect_exit 0 "movie: $work/s/sunset.mp4 \(12 frames, 34x20, 24 fps" -- sequence
   fail "sequence --movie: ffprobe says '$(probe "$work/s/sunset.mp4")'"
 no_leftovers "$work/s"
 
-# The movie shows what the previews show: the same view and exposure (-12 stops at frame 0;
+# The movie shows what the previews show: the same view and exposure ("auto", -13.6 stops at frame 0;
 # without it the frame would be white), up to H.264's loss.
 movie_mean="$(mean_rgb "$work/s/sunset.mp4" crop=33:19:0:0)"
 png_mean="$(mean_rgb "$work/p/sunset.0000.png")"

@@ -51,7 +51,8 @@ step() { echo "[$((SECONDS - started)) s] $*"; }
 
 scene="$src/data/scenes/sunset_sequence.json"
 slurm="$src/scripts/slurm"
-flags=(--res 48x27 --spp 1 --compression none)
+# A fixed preview exposure: "auto" would add up to 24 meter renders to every task (docs/cluster.md).
+flags=(--res 48x27 --spp 1 --compression none --set /render/preview/exposure_stops=-11)
 mkdir -p "$work/jobs"
 cluster_start "$work/cluster" || exit 1
 
@@ -128,7 +129,8 @@ no_partial() {
 # here on two local frames (so a fast or a loaded machine gets more or fewer frames). It runs on
 # one CPU while the other checks use the other; its results are checked last.
 dir="$work/signal"
-sig_flags=(--res 640x360 --spp 16 --compression none)
+sig_flags=(--res 640x360 --spp 16 --compression none
+  --set /render/preview/exposure_stops=-11)
 "$kasumi" sequence "$scene" --frames 0-1 -o "$work/signal_local/s.####.exr" "${sig_flags[@]}" \
   --threads 1 --no-contact-sheet 2>"$work/signal_local.log" || fail "signal: local run failed"
 per_frame="$(sed -n 's/.*; \([0-9.]*\) s per rendered frame.*/\1/p' "$work/signal_local.log")"
