@@ -1,12 +1,14 @@
 #include "sequence/sequence.h"
 
 #include "core/color_management.h"
+#include "core/content_hash.h"
 #include "core/error.h"
 #include "core/exr_io.h"
 #include "render/frame_output.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "sequence/auto_exposure.h"
+#include "sequence/frame_record.h"
 #include "sequence/frame_runtime.h"
 #include "sequence/movie.h"
 #include "sequence/sequence_contact_sheet.h"
@@ -281,6 +283,16 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         files.preview = preview_path;
         files.compression = options.compression;
         files.preview_settings = scene.preview(runtime.desc(), frame);
+        FrameRecord record;
+        record.frame = frame;
+        record.file = fs::path(path).filename().string();
+        record.scene = options.scene_path;
+        record.scene_hash = text_content_hash(doc.dump());
+        record.settings = frame_settings(runtime.desc(), doc, options.aovs, options.compression);
+        record.seed = runtime.desc().render.seed;
+        record.render_seconds = result.seconds;
+        record.host = host_name();
+        record.version = kKasumiVersion;
         image.metadata = frame_metadata(runtime, result, frame, times, files.preview_settings);
         // Time spent on this frame here; the writer adds its own.
         const double main_seconds = seconds_since(frame_start);
@@ -291,11 +303,14 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         const ExrPixelType pixel_type = runtime.desc().film.pixel_type;
 
         dispatch([&, frame, path, files, frame_name, main_seconds, setup_seconds, image_seconds,
-                  render_seconds, nonfinite, reuse_line, pixel_type,
+                  render_seconds, nonfinite, reuse_line, pixel_type, record = std::move(record),
                   image = std::move(image)]() mutable {
             const auto write_start = Clock::now();
             const ExrWriteReport half_report =
                 write_frame_files(image, image_channel_views(image, pixel_type), files);
+            // The record after the EXR, hashed as written: it vouches for those bytes.
+            record.exr_hash = file_content_hash(path);
+            write_frame_record(record, frame_record_path(path));
             if (want_sheet)
                 thumbnails.emplace(frame, make_thumbnail(image));
             const double write_seconds = image_seconds + seconds_since(write_start);
