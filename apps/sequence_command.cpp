@@ -78,8 +78,9 @@ void verify(const SequenceOptions& s) {
                         frame_status_name(c.status), c.detail.c_str());
     }
     std::fflush(stdout);
-    std::fprintf(stderr, "verify: %zu frames: %zu ok, %zu missing, %zu stale, %zu corrupt, %zu "
-                         "unrecorded\n",
+    std::fprintf(stderr,
+                 "verify: %zu frames: %zu ok, %zu missing, %zu stale, %zu corrupt, %zu "
+                 "unrecorded\n",
                  checks.size(), counts[0], counts[1], counts[2], counts[3], counts[4]);
     if (counts[0] != checks.size())
         set_command_exit_code(static_cast<int>(ErrorKind::Validation));

@@ -4,8 +4,8 @@
 #include "core/error.h"
 #include "core/text_file.h"
 
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 

@@ -11,16 +11,16 @@ namespace kasumi {
 
 const char* frame_status_name(FrameStatus status) {
     switch (status) {
-    case FrameStatus::Ok:
-        return "ok";
-    case FrameStatus::Missing:
-        return "missing";
-    case FrameStatus::Stale:
-        return "stale";
-    case FrameStatus::Corrupt:
-        return "corrupt";
-    case FrameStatus::Unrecorded:
-        return "unrecorded";
+        case FrameStatus::Ok:
+            return "ok";
+        case FrameStatus::Missing:
+            return "missing";
+        case FrameStatus::Stale:
+            return "stale";
+        case FrameStatus::Corrupt:
+            return "corrupt";
+        case FrameStatus::Unrecorded:
+            return "unrecorded";
     }
     return "?";
 }
@@ -64,18 +64,18 @@ std::vector<FrameCheck> verify_sequence(const SequenceOptions& options) {
         const Json doc = std::move(source.frame_document(frame).json());
         const std::string scene_hash = text_content_hash(doc.dump());
         if (scene_hash != record.scene_hash) {
-            verdict(FrameStatus::Stale, path + ": the scene changed since it was rendered "
-                                        "(document " + scene_hash + ", recorded " +
-                                        record.scene_hash + ")");
+            verdict(FrameStatus::Stale, path +
+                                            ": the scene changed since it was rendered "
+                                            "(document " +
+                                            scene_hash + ", recorded " + record.scene_hash + ")");
             continue;
         }
         const SceneDesc desc = source.parse(doc, frame, &cache);
         cache.end_frame();
-        const std::string settings =
-            frame_settings(desc, doc, options.aovs, options.compression);
+        const std::string settings = frame_settings(desc, doc, options.aovs, options.compression);
         if (settings != record.settings) {
-            verdict(FrameStatus::Stale, path + ": settings " + settings + ", recorded " +
-                                            record.settings);
+            verdict(FrameStatus::Stale,
+                    path + ": settings " + settings + ", recorded " + record.settings);
             continue;
         }
         verdict(FrameStatus::Ok, "");
