@@ -7,14 +7,17 @@
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
-#include <filesystem>
-
 namespace kasumi {
 
 std::string frame_record_path(const std::string& exr_path) {
-    std::filesystem::path path(exr_path);
-    path.replace_extension(".manifest.json");
-    return path.string();
+    // Not replace_extension: in a pattern without one ("out/s.####") the frame number would be
+    // the extension, and every frame would share one record.
+    const std::string suffix = ".exr";
+    const bool has_suffix =
+        exr_path.size() > suffix.size() &&
+        exr_path.compare(exr_path.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return (has_suffix ? exr_path.substr(0, exr_path.size() - suffix.size()) : exr_path) +
+           ".manifest.json";
 }
 
 void write_frame_record(const FrameRecord& r, const std::string& path) {

@@ -26,7 +26,9 @@ struct FrameRecord {
     std::string version;   ///< the kasumi that wrote it
 };
 
-/// The record of the frame written to `exr_path`: its extension replaced by .manifest.json.
+/// The record of the frame written to `exr_path`: its ".exr" (if any) replaced by
+/// ".manifest.json" (out/s.0007.exr -> out/s.0007.manifest.json, out/s.0007 ->
+/// out/s.0007.manifest.json).
 std::string frame_record_path(const std::string& exr_path);
 
 /// Writes `record` to `path` as one JSON object, atomically; throws ErrorKind::Output.

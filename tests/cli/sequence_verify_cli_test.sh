@@ -71,6 +71,13 @@ grep -q '"seed": 2' "$work/changed.json" || fail "the scene edit did not apply"
 expect_exit 5 "2 stale" -- sequence "$work/changed.json" --frames 0-5 -o "$out" "${tiny[@]}" \
   --verify
 
+# A pattern without an extension gets a record per frame all the same.
+expect_exit 0 "" -- sequence "$scene" --frames 0-1 -o "$work/n/fog.####" "${tiny[@]}" -q \
+  --no-contact-sheet
+[ -s "$work/n/fog.0000.manifest.json" ] && [ -s "$work/n/fog.0001.manifest.json" ] ||
+  fail "records of an extension-less pattern: $(ls "$work/n")"
+expect_exit 0 "2 ok" -- sequence "$scene" --frames 0-1 -o "$work/n/fog.####" "${tiny[@]}" --verify
+
 # Rendering the missing and the stale again (without --skip-existing) makes it clean.
 expect_exit 0 "" -- sequence "$scene" --frames 0-5 -o "$out" "${tiny[@]}" -q --no-skip-existing \
   --no-contact-sheet
