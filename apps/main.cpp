@@ -3,6 +3,7 @@
 /// 130/143 interrupted).
 #include "apps/cloud_command.h"
 #include "apps/commands.h"
+#include "apps/movie_command.h"
 #include "apps/phase_command.h"
 #include "apps/sequence_command.h"
 #include "apps/study_command.h"
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
     kasumi::add_phase_command(app);
     kasumi::add_make_cloud_command(app);
     kasumi::add_sequence_command(app);
+    kasumi::add_movie_command(app);
     kasumi::add_study_command(app);
     try {
         app.parse(argc, argv);

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "render/frame_output.h"
 #include "sequence/sequence.h"
+#include "sequence/sequence_verify.h"
 
 #include <algorithm>
 #include <atomic>
@@ -33,8 +34,11 @@ struct Options {
     std::string output;
     std::string preview_dir;
     std::string contact_sheet;
+    std::string movie;
+    double fps = 24.0;
     bool no_contact_sheet = false;
     bool contact_sheet_only = false;
+    bool verify = false;
     bool skip_existing = true;
     bool no_reuse = false;
     int spp = 0;
@@ -60,6 +64,26 @@ std::vector<Override> render_overrides(const Options& o) {
     for (const std::string& s : sets)
         overrides.push_back(parse_override(s));
     return overrides;
+}
+
+/// --verify: one line per frame that is not ok on stdout, a count of each status on stderr;
+/// exit 5 (a validation check failed) unless every frame is ok.
+void verify(const SequenceOptions& s) {
+    const std::vector<FrameCheck> checks = verify_sequence(s);
+    size_t counts[5] = {};
+    for (const FrameCheck& c : checks) {
+        ++counts[static_cast<int>(c.status)];
+        if (c.status != FrameStatus::Ok)
+            std::printf("frame %s  %-10s  %s\n", frame_path("######", c.frame).c_str(),
+                        frame_status_name(c.status), c.detail.c_str());
+    }
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "verify: %zu frames: %zu ok, %zu missing, %zu stale, %zu corrupt, %zu "
+                 "unrecorded\n",
+                 checks.size(), counts[0], counts[1], counts[2], counts[3], counts[4]);
+    if (counts[0] != checks.size())
+        set_command_exit_code(static_cast<int>(ErrorKind::Validation));
 }
 
 void run(const Options& o) {
@@ -103,9 +127,21 @@ void run(const Options& o) {
                                   : o.contact_sheet;
         }
     }
+    if (!o.movie.empty()) {
+        if (o.frame >= 0)
+            throw Error(ErrorKind::Usage,
+                        "--movie needs the whole --frames range, not one --frame (run `kasumi "
+                        "movie` after the farm's tasks)");
+        s.movie = o.movie;
+        s.movie_fps = o.fps;
+    }
     if (o.frame >= 0 && !o.contact_sheet.empty())
         s.contact_sheet = o.contact_sheet;
     s.render = !o.contact_sheet_only;
+    if (o.verify) {
+        verify(s);
+        return;
+    }
 
     g_cancel = false;
     std::signal(SIGINT, on_sequence_signal);
@@ -133,6 +169,13 @@ void run(const Options& o) {
             }
             std::fprintf(stderr, "\nsequence: over the run: %s\n",
                          reuse_text(summary.reuse).c_str());
+            if (summary.meter_renders > 0) {
+                std::fprintf(stderr,
+                             "sequence: auto exposure: %zu meter renders in %.2f s (%.3f s "
+                             "each)\n",
+                             summary.meter_renders, summary.meter_seconds,
+                             summary.meter_seconds / static_cast<double>(summary.meter_renders));
+            }
         }
         if (!summary.contact_sheet.empty()) {
             std::fprintf(stderr, "contact sheet: %s (%zu frames, %zu missing)\n",
@@ -165,6 +208,14 @@ void add_sequence_command(CLI::App& root) {
                                   "<name>contact_sheet.png)");
     cmd->add_flag("--no-contact-sheet", o->no_contact_sheet, "write no contact sheet")
         ->excludes(sheet);
+    cmd->add_option("--movie", o->movie,
+                    "also encode the frames to this H.264 movie (.mp4) with ffmpeg, through the "
+                    "previews' view and exposure");
+    cmd->add_option("--fps", o->fps, "movie frames per second (default 24)")
+        ->check(CLI::Range(0.001, 1000.0));
+    cmd->add_flag("--verify", o->verify,
+                  "render nothing: check every frame against its manifest record (missing, "
+                  "stale, corrupt, unrecorded; exit 5 unless all are ok)");
     cmd->add_flag("--contact-sheet-only", o->contact_sheet_only,
                   "render nothing: build the contact sheet from the EXRs on disk");
     cmd->add_flag("--skip-existing,!--no-skip-existing", o->skip_existing,

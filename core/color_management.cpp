@@ -90,15 +90,6 @@ auto with_ocio_errors(const std::string& path, Body&& body) -> decltype(body()) 
     }
 }
 
-uint8_t quantise(float display_value) {
-    // Clip to [0, 1] (NaN to 0), then round to nearest: 0.5/255 is the largest error.
-    if (!(display_value > 0.0f))
-        return 0;
-    if (display_value >= 1.0f)
-        return 255;
-    return static_cast<uint8_t>(std::lround(display_value * 255.0f));
-}
-
 std::string executable_dir() {
     std::string buffer(4096, '\0');
     const ssize_t n = ::readlink("/proc/self/exe", buffer.data(), buffer.size() - 1);
@@ -129,24 +120,8 @@ void apply_display_view(std::vector<float>& rgb, const PreviewSettings& settings
 
 void write_preview_png(const Image& image, const std::string& png_path,
                        const PreviewSettings& settings) {
-    const ImageChannel* r = image.find("R");
-    const ImageChannel* g = image.find("G");
-    const ImageChannel* b = image.find("B");
-    if (!r || !g || !b)
-        throw Error(ErrorKind::Runtime,
-                    "write_preview_png: " + png_path + ": the image needs R, G and B channels");
-    const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
-    std::vector<float> rgb(pixels * 3);
-    for (size_t i = 0; i < pixels; ++i) {
-        rgb[3 * i + 0] = r->data[i];
-        rgb[3 * i + 1] = g->data[i];
-        rgb[3 * i + 2] = b->data[i];
-    }
-    apply_display_view(rgb, settings);
-    std::vector<uint8_t> bytes(rgb.size());
-    for (size_t i = 0; i < rgb.size(); ++i)
-        bytes[i] = quantise(rgb[i]);
-    write_png_rgb8(image.width, image.height, bytes, png_path);
+    write_png_rgb8(image.width, image.height,
+                   display_rgb8(image, settings, "write_preview_png: " + png_path), png_path);
 }
 
 std::vector<std::string> list_displays(const std::string& config_path) {

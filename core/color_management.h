@@ -6,6 +6,7 @@
 /// data/ocio/config.ocio and the ACES CG/studio configs) through a display/view transform.
 #include "core/image.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,13 @@ struct PreviewSettings {
 /// `png_path` if it cannot be written (atomically, as write_png_rgb8).
 void write_preview_png(const Image& image, const std::string& png_path,
                        const PreviewSettings& settings);
+
+/// The 8-bit display RGB (packed, row-major) of `image`'s R, G, B channels through the view of
+/// `settings`, clipped and rounded as write_preview_png writes them (a movie frame). Throws
+/// ErrorKind::Runtime naming `what` if R, G or B is missing, and the OCIO errors of
+/// write_preview_png.
+std::vector<uint8_t> display_rgb8(const Image& image, const PreviewSettings& settings,
+                                  const std::string& what);
 
 /// Applies the display/view transform of `settings` to scene-linear Rec.709 pixels in place
 /// (`rgb` is packed RGB floats), including the exposure; no clipping. What write_preview_png

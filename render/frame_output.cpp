@@ -1,10 +1,18 @@
 #include "render/frame_output.h"
 
 #include "core/error.h"
+#include "core/exposure_meter.h"
 
+#include <cstdio>
 #include <filesystem>
 
 namespace kasumi {
+
+std::string exposure_text(float stops) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", static_cast<double>(stops));
+    return text;
+}
 
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
                          uint32_t& aovs, ExrCompression& compression) {
@@ -30,17 +38,29 @@ void make_parent_dirs(const std::string& path) {
 }
 
 PreviewSettings preview_settings(const SceneDesc& desc) {
-    PreviewSettings preview;
-    preview.config_path = default_ocio_config_path();
+    PreviewSettings preview;  // config_path empty: the default config, found when used
     preview.view = desc.render.preview.view;
     preview.exposure_stops = desc.render.preview.exposure_stops;
+    return preview;
+}
+
+PreviewSettings metered_preview_settings(const SceneRuntime& scene, const RenderResult& result) {
+    PreviewSettings preview = preview_settings(scene.desc());
+    if (scene.desc().render.preview.exposure_auto) {
+        const std::vector<FilmPlane> rgb = result.film.planes(0);  // R, G, B, A
+        const size_t pixels =
+            static_cast<size_t>(result.film.width()) * static_cast<size_t>(result.film.height());
+        preview.exposure_stops = metered_exposure_stops(
+            log2_average_luminance(rgb[0].data, rgb[1].data, rgb[2].data, pixels));
+    }
     return preview;
 }
 
 std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRuntime& scene,
                                                                 const RenderResult& result,
                                                                 int64_t frame,
-                                                                const StageTimes& times) {
+                                                                const StageTimes& times,
+                                                                const PreviewSettings& preview) {
     const SceneDesc& desc = scene.desc();
     const RenderCounters& c = result.counters;
     std::vector<std::pair<std::string, std::string>> metadata = {
@@ -52,6 +72,9 @@ std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRunti
         {"render_seconds", std::to_string(result.seconds)},
         {"units", "scene-linear Rec.709, luminance in cd/m2"},
         {"interrupted", result.interrupted ? "true" : "false"},
+        {"preview/view", preview.view},
+        {"preview/exposure_stops", exposure_text(preview.exposure_stops)},
+        {"preview/exposure", desc.render.preview.exposure_auto ? "auto" : "fixed"},
         {"stats/camera_rays", std::to_string(c.camera_rays)},
         {"stats/surface_shadow_rays", std::to_string(c.surface_shadow_rays)},
         {"stats/shadow_rays_avoided", std::to_string(c.shadow_rays_avoided)},
@@ -123,7 +146,8 @@ ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResul
     const SceneDesc& desc = scene.desc();
     // The EXR is written straight from the film's planes; `header` carries size and metadata.
     Image header(result.film.width(), result.film.height());
-    header.metadata = frame_metadata(scene, result, frame, times);
+    const PreviewSettings preview = metered_preview_settings(scene, result);
+    header.metadata = frame_metadata(scene, result, frame, times, preview);
     std::vector<ExrChannelView> channels;
     for (const FilmPlane& plane : result.film.planes(paths.aovs)) {
         // The first four planes are R, G, B, A (Film::planes); AOVs stay float.
@@ -134,8 +158,7 @@ ExrWriteReport write_render_outputs(const SceneRuntime& scene, const RenderResul
     files.exr = paths.exr;
     files.preview = paths.preview;
     files.compression = paths.compression;
-    if (!paths.preview.empty())
-        files.preview_settings = preview_settings(desc);
+    files.preview_settings = preview;
     // Compressed with the render's own thread count (--threads 1: on this thread alone).
     files.threads = result.threads;
     return write_frame_files(header, channels, files);

@@ -34,20 +34,31 @@ struct OutputPaths {
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
                          uint32_t& aovs, ExrCompression& compression);
 
+/// `stops` as the kasumi/preview/exposure_stops metadata holds it (shortest exact text).
+std::string exposure_text(float stops);
+
 /// Creates the parent directories of `path`; throws an output error naming the directory.
 void make_parent_dirs(const std::string& path);
 
-/// The scene's render.preview view and exposure with the default OCIO config.
+/// The scene's render.preview view and exposure with the default OCIO config (exposure 0 when
+/// it is "auto": the caller meters it, see metered_preview_settings and sequence/auto_exposure.h).
 PreviewSettings preview_settings(const SceneDesc& desc);
+
+/// preview_settings of `scene`, its "auto" exposure metered on the rendered frame itself
+/// (core/exposure_meter.h; a single frame has no sequence to smooth over).
+PreviewSettings metered_preview_settings(const SceneRuntime& scene, const RenderResult& result);
 
 /// The EXR metadata of frame `frame` rendered from `scene` (keys without the kasumi/ prefix that
 /// write_exr adds): version, scene, frame, spp, seed, render_seconds, units, interrupted, the
-/// render counters as stats/*, and stage_metadata(times, plan) (time/<stage>_s, plan/ran,
-/// plan/skipped). The same keys for every command that renders.
+/// view and exposure of `preview` (preview/view, preview/exposure_stops: what `kasumi movie`
+/// tone maps the frame with; preview/exposure: "auto" or "fixed"), the render counters as stats/*,
+/// and stage_metadata(times, plan) (time/<stage>_s, plan/ran, plan/skipped). The same keys for
+/// every command that renders.
 std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRuntime& scene,
                                                                 const RenderResult& result,
                                                                 int64_t frame,
-                                                                const StageTimes& times);
+                                                                const StageTimes& times,
+                                                                const PreviewSettings& preview);
 
 /// What writing a frame's files needs once its runtime is gone (a sequence writes them on a
 /// background thread while the next frame renders).

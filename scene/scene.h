@@ -37,7 +37,10 @@ struct FilmDesc {
 
 struct PreviewDesc {
     std::string view = "ACES 1.0 - SDR Video";  ///< OCIO view of the sRGB display
-    float exposure_stops = 0.0f;
+    float exposure_stops = 0.0f;  ///< scene-linear gain 2^stops before the view, [-64, 64]
+    /// exposure_stops "auto": metered per frame (core/exposure_meter.h), smoothed over a
+    /// sequence (sequence/auto_exposure.h); exposure_stops is then unused.
+    bool exposure_auto = false;
 };
 
 /// Whitted recursion through mirrors and dielectrics (render/whitted.h).

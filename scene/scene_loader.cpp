@@ -174,8 +174,14 @@ RenderSettings parse_render(const JsonNode& node) {
         JsonObjectReader preview(*v);
         if (auto view = preview.optional("view"))
             render.preview.view = view->as_string();
-        if (auto e = preview.optional("exposure_stops"))
-            render.preview.exposure_stops = e->as_float();
+        if (auto e = preview.optional("exposure_stops")) {
+            if (e->is_string() && e->as_string() == "auto")
+                render.preview.exposure_auto = true;
+            else if (e->is_number())
+                render.preview.exposure_stops = e->in_closed(-64.0f, 64.0f);
+            else
+                e->fail("expected a number of stops in [-64, 64] or \"auto\"");
+        }
         preview.finish();
     }
     parse_sky_render_keys(reader, render.sky);

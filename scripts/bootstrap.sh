@@ -22,6 +22,7 @@ packages=(
   libglm-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format
   pybind11-dev python3-dev python3-numpy python3-pytest
+  ffmpeg
 )
 
 install_packages() {

@@ -1,12 +1,16 @@
 #include "sequence/sequence.h"
 
 #include "core/color_management.h"
+#include "core/content_hash.h"
 #include "core/error.h"
 #include "core/exr_io.h"
-#include "gi/gi.h"
 #include "render/frame_output.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "sequence/auto_exposure.h"
+#include "sequence/frame_record.h"
+#include "sequence/frame_runtime.h"
+#include "sequence/movie.h"
 #include "sequence/sequence_contact_sheet.h"
 #include "sequence/sequence_writer.h"
 
@@ -57,7 +61,11 @@ struct SequenceScene {
     SequenceCache cache;
 
     explicit SequenceScene(const SequenceOptions& o)
-        : source(o.scene_path, o.overrides), cache(o.reuse) {}
+        : source(o.scene_path, o.overrides),
+          cache(o.reuse),
+          scene_path(o.scene_path),
+          reuse(o.reuse),
+          threads(o.threads) {}
 
     Json document(int64_t frame) const {
         SceneDocument doc = source.frame_document(frame);
@@ -67,6 +75,23 @@ struct SequenceScene {
     /// The scene of `frame`'s document; an input error says where the frame lies among the
     /// key frames, as `kasumi check` does (frame_context).
     SceneDesc parse(const Json& doc, int64_t frame) { return source.parse(doc, frame, &cache); }
+
+    /// The preview settings of `frame` (scene `desc`): an "auto" exposure metered and smoothed
+    /// over the frames before it (sequence/auto_exposure.h).
+    PreviewSettings preview(const SceneDesc& desc, int64_t frame) {
+        PreviewSettings settings = preview_settings(desc);
+        if (desc.render.preview.exposure_auto) {
+            if (auto_exposure == nullptr)
+                auto_exposure = std::make_unique<AutoExposure>(source, scene_path, reuse, threads);
+            settings.exposure_stops = auto_exposure->exposure_stops(frame);
+        }
+        return settings;
+    }
+
+    std::string scene_path;
+    bool reuse;
+    int threads;
+    std::unique_ptr<AutoExposure> auto_exposure;  ///< made at the first "auto" frame
 };
 
 }  // namespace
@@ -201,7 +226,7 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
             ++summary.skipped;
             if (!preview_path.empty() && !fs::exists(preview_path)) {
                 const PreviewSettings own =
-                    preview_settings(scene.parse(scene.document(frame), frame));
+                    scene.preview(scene.parse(scene.document(frame), frame), frame);
                 dispatch([=, log = options.log] {
                     make_parent_dirs(preview_path);
                     write_preview_png(read_exr(path), preview_path, own);
@@ -220,23 +245,9 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         SceneDesc desc = scene.parse(doc, frame);
         times.load_s = seconds_since(frame_start);
         const auto build_start = Clock::now();
-        const std::string key = options.reuse ? bvh_key(doc) : std::string();
-        std::shared_ptr<const SurfaceScene> bvh = scene.cache.surfaces(key);
-        const bool bvh_reused = bvh != nullptr;
-        const std::string sky_key =
-            options.reuse ? sky_tables_key(doc, options.scene_path, desc.sky.get()) : std::string();
-        std::shared_ptr<const SkyLuts> sky_tables = scene.cache.sky_tables(sky_key);
-        const SceneRuntime runtime(std::move(desc), std::move(bvh), std::move(sky_tables),
-                                   make_gi_method);
-        if (runtime.surfaces() != nullptr && !bvh_reused) {
-            scene.cache.count_bvh_built();
-            scene.cache.remember_surfaces(key, runtime.shared_surfaces());
-        }
-        if (runtime.sky() != nullptr && runtime.sky()->shared_tables() != nullptr &&
-            !runtime.sky()->tables_reused()) {
-            scene.cache.count_sky_tables_built();
-            scene.cache.remember_sky_tables(sky_key, runtime.sky()->shared_tables());
-        }
+        const std::unique_ptr<SceneRuntime> runtime_owner = build_frame_runtime(
+            scene.cache, doc, options.scene_path, std::move(desc), options.reuse);
+        const SceneRuntime& runtime = *runtime_owner;
         times.build_s = seconds_since(build_start);
         add_stage_parts(times, runtime);
         const double setup_seconds = seconds_since(frame_start);
@@ -267,13 +278,22 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
             }
         }
         result.film.to_image(image, options.aovs);
-        image.metadata = frame_metadata(runtime, result, frame, times);
         FrameFiles files;
         files.exr = path;
         files.preview = preview_path;
         files.compression = options.compression;
-        if (!preview_path.empty())
-            files.preview_settings = preview_settings(runtime.desc());
+        files.preview_settings = scene.preview(runtime.desc(), frame);
+        FrameRecord record;
+        record.frame = frame;
+        record.file = fs::path(path).filename().string();
+        record.scene = options.scene_path;
+        record.scene_hash = text_content_hash(doc.dump());
+        record.settings = frame_settings(runtime.desc(), doc, options.aovs, options.compression);
+        record.seed = runtime.desc().render.seed;
+        record.render_seconds = result.seconds;
+        record.host = host_name();
+        record.version = kKasumiVersion;
+        image.metadata = frame_metadata(runtime, result, frame, times, files.preview_settings);
         // Time spent on this frame here; the writer adds its own.
         const double main_seconds = seconds_since(frame_start);
         const double image_seconds = seconds_since(image_start);
@@ -283,11 +303,14 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         const ExrPixelType pixel_type = runtime.desc().film.pixel_type;
 
         dispatch([&, frame, path, files, frame_name, main_seconds, setup_seconds, image_seconds,
-                  render_seconds, nonfinite, reuse_line, pixel_type,
+                  render_seconds, nonfinite, reuse_line, pixel_type, record = std::move(record),
                   image = std::move(image)]() mutable {
             const auto write_start = Clock::now();
             const ExrWriteReport half_report =
                 write_frame_files(image, image_channel_views(image, pixel_type), files);
+            // The record after the EXR, hashed as written: it vouches for those bytes.
+            record.exr_hash = file_content_hash(path);
+            write_frame_record(record, frame_record_path(path));
             if (want_sheet)
                 thumbnails.emplace(frame, make_thumbnail(image));
             const double write_seconds = image_seconds + seconds_since(write_start);
@@ -345,11 +368,25 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
         }
         // One view and exposure for the whole sheet (the first frame's), so it shows how the
         // frames' brightness changes.
-        const PreviewSettings sheet_preview = preview_settings(
-            scene.parse(scene.document(options.frames.front()), options.frames.front()));
+        const int64_t first = options.frames.front();
+        const PreviewSettings sheet_preview =
+            scene.preview(scene.parse(scene.document(first), first), first);
         make_parent_dirs(options.contact_sheet);
         write_preview_png(make_contact_sheet(cells), options.contact_sheet, sheet_preview);
         summary.contact_sheet = options.contact_sheet;
+    }
+    if (!options.movie.empty() && !summary.interrupted && !options.frames.empty()) {
+        MovieOptions movie;
+        movie.pattern = options.output_pattern;
+        movie.frames = options.frames;
+        movie.path = options.movie;
+        movie.fps = options.movie_fps;
+        movie.log = options.log;
+        summary.movie = write_movie(movie).path;
+    }
+    if (scene.auto_exposure != nullptr) {
+        summary.meter_renders = scene.auto_exposure->meter_renders();
+        summary.meter_seconds = scene.auto_exposure->meter_seconds();
     }
     summary.seconds = seconds_since(run_start);
     return summary;

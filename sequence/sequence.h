@@ -50,6 +50,8 @@ struct SequenceOptions {
     std::string output_pattern;       ///< EXR path with a '#' run
     std::string preview_dir;          ///< empty: no per-frame preview PNGs
     std::string contact_sheet;        ///< empty: none
+    std::string movie;                ///< H.264 movie of the frames (sequence/movie.h); empty: none
+    double movie_fps = 24.0;          ///< frames per second of the movie
     bool render = true;               ///< false: only the contact sheet, from the EXRs on disk
     bool skip_existing = true;        ///< a frame whose EXR exists is not rendered again
     bool reuse = true;                ///< false: parse and build everything every frame
@@ -73,12 +75,16 @@ struct SequenceSummary {
     double render_seconds = 0.0;  ///< sum of render_image times
     double write_seconds = 0.0;   ///< sum of the frames' write times (preview, EXR, thumbnail)
     bool interrupted = false;     ///< cancelled: the frame in flight was not written
+    size_t meter_renders = 0;     ///< auto exposure's meter renders (sequence/auto_exposure.h)
+    double meter_seconds = 0.0;   ///< their wall time
     ReuseCounts reuse;
     std::string contact_sheet;  ///< written path, or empty
+    std::string movie;          ///< written path, or empty
 };
 
 /// Renders (or skips) every frame of `options.frames`, then writes the contact sheet (through
-/// the first frame's preview view and exposure, so brightness changes show). Each
+/// the first frame's preview view and exposure, so brightness changes show) and the movie
+/// (every frame required: a missing one is an input error naming it). Each
 /// frame's preview is written before its EXR, so an existing EXR means a finished frame. A
 /// frame's files are written on a background thread while the next frame renders; every
 /// rendered frame is written before this returns (or unwinds), and after a failed write no

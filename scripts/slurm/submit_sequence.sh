@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
-# Submits a kasumi sequence to Slurm: an array job of frames (sequence.sbatch) and, after it
-# succeeds, the contact sheet job (contact_sheet.sbatch). Prints both job ids.
+# Submits a kasumi sequence to Slurm: an array job of frames (sequence.sbatch), after it
+# succeeds the contact sheet job (contact_sheet.sbatch), and after that the movie job
+# (movie.sbatch). Prints the three job ids.
 #
 # usage: submit_sequence.sh SCENE FRAMES OUTPUT [-- KASUMI FLAGS...]
 #   e.g. submit_sequence.sh data/scenes/fog_sequence.json 0-239 'out/fog.####.exr' -- --spp 64
 # Environment: FRAMES_PER_TASK (default 1), MAX_PARALLEL (array tasks at once, default 0: no
 # limit), PREVIEW_DIR, KASUMI (binary; default: kasumi on PATH), SBATCH_ARGS (more sbatch flags,
-# e.g. "--partition=cpu --account=abc"), SBATCH (the sbatch command; tests point it at a stub).
+# e.g. "--partition=cpu --account=abc"), SBATCH (the sbatch command; tests point it at a stub),
+# MOVIE (the movie's path; default out/<name>.mp4 beside the frames; "none": no movie job),
+# MOVIE_FPS (default 24).
 set -euo pipefail
 
 if [ $# -lt 3 ]; then
-  sed -n '2,10p' "$0" >&2
+  sed -n '2,13p' "$0" >&2
   exit 2
 fi
 scene="$1" frames="$2" output="$3"
@@ -56,4 +59,14 @@ frames_job="${frames_job%%;*}"
 # shellcheck disable=SC2086
 sheet_job=$("$sbatch" --parsable ${SBATCH_ARGS:-} --dependency="afterok:$frames_job" \
   --kill-on-invalid-dep=yes --export=ALL "$here/contact_sheet.sbatch")
-echo "frames: job $frames_job (array $array); contact sheet: job ${sheet_job%%;*}"
+sheet_job="${sheet_job%%;*}"
+if [ "${MOVIE:-}" = none ]; then
+  echo "frames: job $frames_job (array $array); contact sheet: job $sheet_job"
+  exit 0
+fi
+export MOVIE="${MOVIE:-}" MOVIE_FPS="${MOVIE_FPS:-24}"
+# shellcheck disable=SC2086
+movie_job=$("$sbatch" --parsable ${SBATCH_ARGS:-} --dependency="afterok:$sheet_job" \
+  --kill-on-invalid-dep=yes --export=ALL "$here/movie.sbatch")
+echo "frames: job $frames_job (array $array); contact sheet: job $sheet_job;" \
+  "movie: job ${movie_job%%;*}"

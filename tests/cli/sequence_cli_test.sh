@@ -167,6 +167,13 @@ FRAMES_PER_TASK=5 SLURM_ARRAY_TASK_ID=4 bash "$slurm/sequence.sbatch" || fail "c
 [ "$(count_files "$work/farm" 'fog.002[0-3].exr')" -eq 4 ] || fail "chunk 4 is not frames 20-23"
 bash "$slurm/contact_sheet.sbatch" 2>/dev/null || fail "contact sheet job failed"
 [ -s "$work/farm/fog.contact_sheet.png" ] || fail "contact sheet job wrote no sheet"
+# The movie job: frames 1-2 missing fail it (exit 3) with no movie; frames 20-23 make one.
+MOVIE="$work/farm/fog.mp4" bash "$slurm/movie.sbatch" 2>/dev/null
+[ $? -eq 3 ] || fail "movie job with missing frames did not exit 3"
+[ -e "$work/farm/fog.mp4" ] && fail "movie job with missing frames wrote a movie"
+FRAMES=20-23 MOVIE="$work/farm/fog.mp4" bash "$slurm/movie.sbatch" 2>/dev/null ||
+  fail "movie job of frames 20-23 failed"
+[ -s "$work/farm/fog.mp4" ] || fail "movie job wrote no movie"
 cat >"$work/sbatch" <<'STUB'
 #!/usr/bin/env bash
 echo "$*" >>"$SBATCH_LOG"
@@ -179,7 +186,10 @@ SBATCH="$work/sbatch" SBATCH_LOG="$work/sbatch.log" MAX_PARALLEL=8 \
 grep -q -- "--array=0-239:1%8 .*sequence.sbatch" "$work/sbatch.log" || fail "array job: $(cat "$work/sbatch.log")"
 grep -q -- "--dependency=afterok:1001 .*contact_sheet.sbatch" "$work/sbatch.log" ||
   fail "contact sheet job does not depend on the array: $(cat "$work/sbatch.log")"
-grep -q "job 1001.*job 1002" "$work/submit.out" || fail "submitter output: $(cat "$work/submit.out")"
+grep -q -- "--dependency=afterok:1002 .*movie.sbatch" "$work/sbatch.log" ||
+  fail "movie job does not depend on the contact sheet: $(cat "$work/sbatch.log")"
+grep -q "job 1001.*job 1002.*movie: job 1003" "$work/submit.out" ||
+  fail "submitter output: $(cat "$work/submit.out")"
 : >"$work/sbatch.log"
 FRAMES_PER_TASK=10 SBATCH="$work/sbatch" SBATCH_LOG="$work/sbatch.log" \
   bash "$slurm/submit_sequence.sh" "$scene" 0-239 "$work/farm/fog.####.exr" >/dev/null

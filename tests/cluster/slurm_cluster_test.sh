@@ -3,11 +3,12 @@
 # scripts/slurm/submit_sequence.sh (docs/cluster.md):
 #   slurm_cluster_test.sh KASUMI_BINARY SOURCE_DIR
 # - 48 frames as an array of one frame a task and of 6 frames a task: every frame bit-identical
-#   to a local `kasumi sequence` run (pixel data; EXR headers carry the time), and the contact
-#   sheet job starts only after the array succeeded (afterok);
+#   to a local `kasumi sequence` run (pixel data; EXR headers carry the time), the contact
+#   sheet job starts only after the array succeeded (afterok), and the movie job after it (48
+#   frames at 24 fps, checked with ffprobe);
 # - scancel of a running task, then a resubmit: no partial frame, finished frames untouched
 #   (nothing rendered twice), the rest rendered;
-# - a task whose frame cannot be written fails the array, and the contact sheet never runs;
+# - a task whose frame cannot be written fails the array; neither contact sheet nor movie runs;
 # - Slurm's --signal warning before the time limit stops the running frame cleanly (exit 143,
 #   finished frames kept, no temporary) and the task is requeued until the chunk is done.
 # Needs root (installs Debian's slurmctld slurmd slurm-client munge if missing); exits 77 (ctest
@@ -50,7 +51,8 @@ step() { echo "[$((SECONDS - started)) s] $*"; }
 
 scene="$src/data/scenes/sunset_sequence.json"
 slurm="$src/scripts/slurm"
-flags=(--res 48x27 --spp 1 --compression none)
+# A fixed preview exposure: "auto" would add up to 24 meter renders to every task (docs/cluster.md).
+flags=(--res 48x27 --spp 1 --compression none --set /render/preview/exposure_stops=-11)
 mkdir -p "$work/jobs"
 cluster_start "$work/cluster" || exit 1
 
@@ -59,8 +61,8 @@ cluster_start "$work/cluster" || exit 1
 export KASUMI="$kasumi"
 base_sbatch="--chdir=$work/jobs --cpus-per-task=1 --mem=256M"
 
-# submit NAME [ENV=VALUE...] -- SUBMIT_ARGS...: runs submit_sequence.sh; sets frames_job and
-# sheet_job from its output.
+# submit NAME [ENV=VALUE...] -- SUBMIT_ARGS...: runs submit_sequence.sh; sets frames_job,
+# sheet_job and movie_job from its output.
 submit() {
   local name="$1" out
   shift
@@ -70,11 +72,12 @@ submit() {
   out="$(env SBATCH_ARGS="$base_sbatch ${EXTRA_SBATCH:-}" "${envs[@]}" \
     bash "$slurm/submit_sequence.sh" "$@" 2>&1)" || {
     fail "$name: submit_sequence.sh failed: $out"
-    frames_job="" sheet_job=""
+    frames_job="" sheet_job="" movie_job=""
     return 1
   }
   frames_job="$(sed -n 's/^frames: job \([0-9]*\) .*/\1/p' <<<"$out")"
   sheet_job="$(sed -n 's/.*contact sheet: job \([0-9]*\).*/\1/p' <<<"$out")"
+  movie_job="$(sed -n 's/.*movie: job \([0-9]*\).*/\1/p' <<<"$out")"
   step "$name: $out"
 }
 
@@ -126,15 +129,16 @@ no_partial() {
 # here on two local frames (so a fast or a loaded machine gets more or fewer frames). It runs on
 # one CPU while the other checks use the other; its results are checked last.
 dir="$work/signal"
-sig_flags=(--res 640x360 --spp 16 --compression none)
+sig_flags=(--res 640x360 --spp 16 --compression none
+  --set /render/preview/exposure_stops=-11)
 "$kasumi" sequence "$scene" --frames 0-1 -o "$work/signal_local/s.####.exr" "${sig_flags[@]}" \
   --threads 1 --no-contact-sheet 2>"$work/signal_local.log" || fail "signal: local run failed"
 per_frame="$(sed -n 's/.*; \([0-9.]*\) s per rendered frame.*/\1/p' "$work/signal_local.log")"
 sig_frames="$(awk -v t="${per_frame:-1}" \
   'BEGIN { n = int(50 / t) + 1; print (n < 12 ? 12 : n > 240 ? 240 : n) }')"
 step "signal: $per_frame s a frame on one core: $sig_frames frames in the warned task"
-EXTRA_SBATCH="--time=1 --signal=B:USR1@25" submit signal FRAMES_PER_TASK="$sig_frames" -- \
-  "$scene" "0-$((sig_frames - 1))" "$dir/s.####.exr" -- "${sig_flags[@]}"
+EXTRA_SBATCH="--time=1 --signal=B:USR1@25" submit signal MOVIE=none \
+  FRAMES_PER_TASK="$sig_frames" -- "$scene" "0-$((sig_frames - 1))" "$dir/s.####.exr" -- "${sig_flags[@]}"
 signal_job="$frames_job" signal_sheet="$sheet_job"
 
 step "local reference: kasumi sequence frames 0-47 ${flags[*]}"
@@ -153,7 +157,7 @@ for per in 1 6; do
   dir="$work/per$per"
   submit "per$per" FRAMES_PER_TASK="$per" -- "$scene" 0-47 "$dir/s.####.exr" -- "${flags[@]}" -q
   [ -n "$frames_job" ] || continue
-  wait_jobs 150 "$frames_job" "$sheet_job"
+  wait_jobs 150 "$frames_job" "$sheet_job" "$movie_job"
   tasks="$(field "$frames_job" JobState | wc -l)"
   expected=$((per == 1 ? 48 : 8))
   [ "$tasks" -eq "$expected" ] || fail "per$per: $tasks array tasks, expected $expected"
@@ -170,6 +174,16 @@ for per in 1 6; do
     fail "per$per: sheet dependency left: $(field "$sheet_job" Dependency)"
   [ -s "$dir/s.contact_sheet.png" ] || fail "per$per: no contact sheet"
   compare_frames "$work/local" "$dir" || fail "per$per: frames differ from the local run"
+  # The movie job, after the contact sheet: all 48 frames, at 24 fps.
+  [ "$(all_states "$movie_job")" = COMPLETED ] ||
+    fail "per$per: movie job $(all_states "$movie_job"):" \
+      "$(cat "$work/jobs/kasumi-movie-$movie_job.log")"
+  [[ "$(field "$movie_job" StartTime)" > "$(field "$sheet_job" EndTime)" ||
+    "$(field "$movie_job" StartTime)" = "$(field "$sheet_job" EndTime)" ]] ||
+    fail "per$per: the movie job started before the contact sheet ended"
+  movie="$(ffprobe -v error -count_frames -select_streams v:0 \
+    -show_entries stream=nb_read_frames,r_frame_rate -of csv=p=0 "$dir/s.mp4" 2>&1)"
+  [ "$movie" = "24/1,48" ] || fail "per$per: movie $dir/s.mp4: ffprobe says '$movie'"
   no_partial "$dir"
 done
 
@@ -184,7 +198,7 @@ if [ -n "$frames_job" ]; then
   until [ "$(find "$dir" -name 's.*.exr' 2>/dev/null | wc -l)" -ge 4 ] ||
     [ $((SECONDS - start)) -ge 60 ]; do sleep 0.05; done
   scancel "${frames_job}_0"
-  wait_jobs 60 "$frames_job" "$sheet_job"
+  wait_jobs 60 "$frames_job" "$sheet_job" "$movie_job"
   done_before="$(find "$dir" -name 's.*.exr' | wc -l)"
   state="$(all_states "$frames_job")"
   [ "$state" = CANCELLED ] || fail "cancel: task state $state (cancelled after $done_before frames)"
@@ -192,11 +206,13 @@ if [ -n "$frames_job" ]; then
   [ "$(all_states "$sheet_job")" = CANCELLED ] ||
     fail "cancel: contact sheet job $(all_states "$sheet_job") after a cancelled array"
   [ -e "$dir/s.contact_sheet.png" ] && fail "cancel: a contact sheet of a cancelled array"
+  [ "$(all_states "$movie_job")" = CANCELLED ] ||
+    fail "cancel: movie job $(all_states "$movie_job") after a cancelled array"
   no_partial "$dir"
   kept="$(mtimes "$dir")"
   step "cancel: $done_before frames before scancel; resubmitting"
   submit resubmit FRAMES_PER_TASK=48 -- "$scene" 0-47 "$dir/s.####.exr" -- "${flags[@]}"
-  wait_jobs 120 "$frames_job" "$sheet_job"
+  wait_jobs 120 "$frames_job" "$sheet_job" "$movie_job"
   [ "$(all_states "$frames_job") $(all_states "$sheet_job")" = "COMPLETED COMPLETED" ] ||
     fail "resubmit: states $(all_states "$frames_job") / $(all_states "$sheet_job")"
   log="$work/jobs/kasumi-frames-${frames_job}_0.log"
@@ -215,7 +231,7 @@ dir="$work/fail"
 mkdir -p "$dir/previews/s.0003.png"
 submit fail PREVIEW_DIR="$dir/previews" -- "$scene" 0-5 "$dir/out/s.####.exr" -- "${flags[@]}" -q
 if [ -n "$frames_job" ]; then
-  wait_jobs 60 "$frames_job" "$sheet_job"
+  wait_jobs 60 "$frames_job" "$sheet_job" "$movie_job"
   state3="$(scontrol -o show job "${frames_job}_3" | grep -o 'JobState=[A-Z]* .*ExitCode=[0-9:]*' |
     sed 's/ .*ExitCode/ ExitCode/')"
   [ "$state3" = "JobState=FAILED ExitCode=4:0" ] || fail "fail: task 3 is '$state3'"
@@ -225,6 +241,8 @@ if [ -n "$frames_job" ]; then
   [ "$sheet" = "JobState=CANCELLED Reason=DependencyNeverSatisfied" ] ||
     fail "fail: contact sheet job is '$sheet'"
   [ "$(field "$sheet_job" RunTime)" = "00:00:00" ] || fail "fail: the contact sheet job ran"
+  [ "$(all_states "$movie_job")" = CANCELLED ] || fail "fail: movie job $(all_states "$movie_job")"
+  [ -e "$dir/out/s.mp4" ] && fail "fail: a movie of a failed array"
   [ -e "$dir/out/s.0003.exr" ] && fail "fail: frame 3 has an EXR"
   [ "$(find "$dir/out" -name 's.*.exr' | wc -l)" -eq 5 ] || fail "fail: not 5 frames written"
   no_partial "$dir"

@@ -184,13 +184,16 @@ TEST(Sequence, TwentyFourFramesAreWrittenAndSkippedWhenPresent) {
     }
     EXPECT_TRUE(fs::exists(dir + "/previews/fog.contact_sheet.png"));
     EXPECT_EQ(first.contact_sheet, dir + "/previews/fog.contact_sheet.png");
-    // Nothing but the 24 frames sits beside them (no temporaries left behind).
-    size_t files = 0;
+    // Nothing but the 24 frames and their manifest records sits beside them (no temporaries).
+    size_t files = 0, records = 0;
     for (const auto& entry : fs::directory_iterator(dir + "/frames")) {
-        (void)entry;
         ++files;
+        records +=
+            entry.path().string().size() > 14 &&
+            entry.path().string().substr(entry.path().string().size() - 14) == ".manifest.json";
     }
-    EXPECT_EQ(files, 24u);
+    EXPECT_EQ(files, 48u);
+    EXPECT_EQ(records, 24u);
 
     const SequenceSummary second = run_sequence(o);
     EXPECT_EQ(second.rendered, 0u);
