@@ -167,15 +167,26 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
         } else if (mode == "map") {
             light.shadows = ShadowMode::Map;
         } else if (mode == "shadow-volume") {
-            // Shadow volumes extrude silhouettes away from one point (Crow 1977).
-            if (!is_delta(light) || std::holds_alternative<DirectionalLight>(light.emitter))
-                s->fail("\"shadow-volume\" shadows need a point, spot or goniometric light (a " +
-                        light_type_name(light) + " light has no single centre of projection)");
+            // Silhouettes extruded from one centre of projection: a point (Crow 1977) or the
+            // point at infinity of a parallel light.
+            if (!is_delta(light))
+                s->fail(
+                    "\"shadow-volume\" shadows need a point, spot, goniometric or directional "
+                    "light (a " +
+                    light_type_name(light) + " light has no single centre of projection)");
             light.shadows = ShadowMode::ShadowVolume;
+        } else if (mode == "object-space") {
+            // Shadow polygons projected from one centre (Atherton, Weiler & Greenberg 1978).
+            if (!is_delta(light))
+                s->fail(
+                    "\"object-space\" shadows need a point, spot, goniometric or directional "
+                    "light (a " +
+                    light_type_name(light) + " light has no single centre of projection)");
+            light.shadows = ShadowMode::ObjectSpace;
         } else {
             s->fail(
-                "unknown shadow mode (expected \"ray\", \"none\", \"map\" or "
-                "\"shadow-volume\")");
+                "unknown shadow mode (expected \"ray\", \"none\", \"map\", "
+                "\"shadow-volume\" or \"object-space\")");
         }
     }
     if (const auto m = reader.optional("shadow_map")) {

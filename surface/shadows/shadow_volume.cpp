@@ -1,6 +1,6 @@
-#include "surface/shadow_volume.h"
+#include "surface/shadows/shadow_volume.h"
 
-#include "surface/box_faces.h"
+#include "surface/shadows/welded_mesh.h"
 
 #include <map>
 #include <tuple>
@@ -9,79 +9,9 @@ namespace kasumi {
 
 namespace {
 
-/// A shape as an indexed triangle list with vertices welded by exact position, so that
-/// triangles sharing an edge share its two indices (boxes: 8 corners, 12 triangles).
-struct WeldedMesh {
-    std::vector<Vec3> positions;
-    std::vector<std::array<uint32_t, 3>> triangles;
-};
-
-class Welder {
-  public:
-    explicit Welder(WeldedMesh& mesh) : m_mesh(mesh) {}
-    uint32_t index(const Vec3& p) {
-        const auto key = std::make_tuple(p.x, p.y, p.z);
-        const auto it = m_index.find(key);
-        if (it != m_index.end())
-            return it->second;
-        const auto i = static_cast<uint32_t>(m_mesh.positions.size());
-        m_mesh.positions.push_back(p);
-        m_index.emplace(key, i);
-        return i;
-    }
-    void triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
-        m_mesh.triangles.push_back({index(a), index(b), index(c)});
-    }
-    void quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-        triangle(a, b, c);
-        triangle(a, c, d);
-    }
-
-  private:
-    WeldedMesh& m_mesh;
-    std::map<std::tuple<float, float, float>, uint32_t> m_index;
-};
-
-WeldedMesh box_mesh(const BoxShape& b) {
-    WeldedMesh mesh;
-    Welder weld(mesh);
-    for (const std::array<Vec3, 4>& c : box_faces(b))
-        weld.quad(c[0], c[1], c[2], c[3]);
-    return mesh;
-}
-
-WeldedMesh quad_mesh(const QuadShape& q) {
-    WeldedMesh mesh;
-    Welder weld(mesh);
-    weld.quad(q.vertices[0], q.vertices[1], q.vertices[2], q.vertices[3]);
-    return mesh;
-}
-
-WeldedMesh triangle_mesh(const MeshShape& m) {
-    WeldedMesh mesh;
-    Welder weld(mesh);
-    for (const auto& t : m.mesh.triangles)
-        weld.triangle(m.mesh.positions[t[0]], m.mesh.positions[t[1]], m.mesh.positions[t[2]]);
-    return mesh;
-}
-
 using Edge = std::pair<uint32_t, uint32_t>;
 
-/// Closed and consistently wound: every directed edge appears once and its reverse once.
-bool is_closed(const WeldedMesh& mesh) {
-    std::map<Edge, int> edges;
-    for (const auto& t : mesh.triangles)
-        for (int k = 0; k < 3; ++k)
-            ++edges[{t[k], t[(k + 1) % 3]}];
-    for (const auto& [edge, n] : edges) {
-        const auto reverse = edges.find({edge.second, edge.first});
-        if (n != 1 || reverse == edges.end() || reverse->second != 1)
-            return false;
-    }
-    return true;
-}
-
-void add_volumes(const WeldedMesh& mesh, const Vec3& light, float far_distance,
+void add_volumes(const WeldedMesh& mesh, const LightCentre& light, float far_distance,
                  ShadowVolumeGeometry& out) {
     const bool closed = is_closed(mesh);
     // Triangles turned to face the light, counter-clockwise seen from it, with the number of
@@ -95,7 +25,8 @@ void add_volumes(const WeldedMesh& mesh, const Vec3& light, float far_distance,
     };
     for (const auto& t : mesh.triangles) {
         const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-        const float facing = glm::dot(glm::cross(b - a, c - a), light - a);
+        const Vec3 to_light = light.at_infinity ? light.direction : light.position - a;
+        const float facing = glm::dot(glm::cross(b - a, c - a), to_light);
         if (facing > 0.0f)
             add_cap(t);
         else if (facing < 0.0f && !closed)
@@ -109,9 +40,14 @@ void add_volumes(const WeldedMesh& mesh, const Vec3& light, float far_distance,
     for (const auto& [t, n] : cap_count)
         for (int k = 0; k < 3; ++k)
             edges[{t[k], t[(k + 1) % 3]}] += n;
+    // A point light pushes each vertex out along its ray from the light; a light at infinity
+    // along the parallel rays (the w = 0 extrusion, stopped at the far cap).
     const auto extrude = [&](uint32_t i) {
-        const Vec3 d = mesh.positions[i] - light;
-        return light + d * (far_distance / glm::length(d));
+        const Vec3& v = mesh.positions[i];
+        if (light.at_infinity)
+            return v - far_distance * light.direction;
+        const Vec3 d = v - light.position;
+        return light.position + d * (far_distance / glm::length(d));
     };
     for (const auto& [edge, n] : edges) {
         const auto reverse = edges.find({edge.second, edge.first});
@@ -135,26 +71,24 @@ void add_volumes(const WeldedMesh& mesh, const Vec3& light, float far_distance,
 }  // namespace
 
 ShadowVolumeGeometry build_shadow_volumes(const std::vector<Shape>& shapes,
-                                          const Vec3& light_position, const Bounds3& scene_bounds) {
+                                          const LightCentre& light, const Bounds3& scene_bounds) {
     const Vec3 center = 0.5f * (scene_bounds.min + scene_bounds.max);
     const float radius = 0.5f * glm::length(scene_bounds.extent());
-    const float far_distance = 2.0f * (glm::length(light_position - center) + radius) + 1.0f;
+    // Point light: from the light, beyond the far side of the bounding sphere. Parallel light:
+    // from any vertex (inside the sphere) a diameter and a margin takes it out of the sphere.
+    const float far_distance = light.at_infinity
+                                   ? 2.0f * (2.0f * radius) + 1.0f
+                                   : 2.0f * (glm::length(light.position - center) + radius) + 1.0f;
     ShadowVolumeGeometry out;
-    for (const Shape& shape : shapes) {
-        if (const auto* box = std::get_if<BoxShape>(&shape.geometry))
-            add_volumes(box_mesh(*box), light_position, far_distance, out);
-        else if (const auto* quad = std::get_if<QuadShape>(&shape.geometry))
-            add_volumes(quad_mesh(*quad), light_position, far_distance, out);
-        else if (const auto* mesh = std::get_if<MeshShape>(&shape.geometry))
-            add_volumes(triangle_mesh(*mesh), light_position, far_distance, out);
-    }
+    for (const Shape& shape : shapes)
+        if (const auto mesh = welded_mesh(shape))
+            add_volumes(*mesh, light, far_distance, out);
     return out;
 }
 
-ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const Vec3& light_position,
+ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const LightCentre& light,
                              const Bounds3& scene_bounds)
-    : m_light(light_position),
-      m_geometry(build_shadow_volumes(shapes, light_position, scene_bounds)) {
+    : m_light(light), m_geometry(build_shadow_volumes(shapes, light, scene_bounds)) {
     MeshShape faces;
     faces.file = "(shadow volumes)";
     TriangleMesh& mesh = faces.mesh;
@@ -233,7 +167,9 @@ bool ShadowVolumes::in_shadow(const Vec3& p, const Vec3& view_direction) const {
         return true;
     if (m_spheres == nullptr)
         return false;
-    const Vec3 d = m_light - p;
+    if (m_light.at_infinity)
+        return m_spheres->occluded(Ray{p, m_light.direction, 0.0f, kInfinity});
+    const Vec3 d = m_light.position - p;
     const float distance = glm::length(d);
     return distance > 0.0f &&
            m_spheres->occluded(Ray{p, d / distance, 0.0f, distance * (1.0f - 1e-5f)});
@@ -246,8 +182,8 @@ ShadowVolumeSet::ShadowVolumeSet(const std::vector<Shape>& shapes, const std::ve
             m_volumes.push_back(nullptr);
             continue;
         }
-        const Vec3 position = incident_light(light, Vec3(0.0f)).light_position;
-        m_volumes.push_back(std::make_unique<ShadowVolumes>(shapes, position, scene_bounds));
+        m_volumes.push_back(
+            std::make_unique<ShadowVolumes>(shapes, light_centre(light), scene_bounds));
     }
 }
 
