@@ -17,10 +17,53 @@ namespace {
 constexpr double kOnLine = 1e-9;
 constexpr double kSlab = 1e-6;
 
+/// A triangle's bounding sphere as seen from the light: for a point light the cone from the
+/// light around it (unit axis, cosine and sine of the half-angle; a light inside the sphere
+/// gives a cone of half-angle π that culls nothing), for a parallel light the sphere's
+/// centre and radius (compared in the plane across the light's direction).
+struct LightView {
+    DVec3 centre{0.0};
+    double radius = 0.0;
+    DVec3 axis{0.0, 0.0, 1.0};
+    double half_angle = 0.0;
+};
+
+LightView light_view(const std::array<DVec3, 3>& v, const LightCentre& light) {
+    LightView view;
+    view.centre = (v[0] + v[1] + v[2]) / 3.0;
+    for (const DVec3& p : v)
+        view.radius = std::max(view.radius, glm::length(p - view.centre));
+    if (!light.at_infinity) {
+        const DVec3 d = view.centre - DVec3(light.position);
+        const double distance = glm::length(d);
+        view.axis = distance > 0.0 ? d / distance : DVec3(0.0, 0.0, 1.0);
+        view.half_angle =
+            distance > view.radius ? std::asin(view.radius / distance) : 3.141592653589793;
+    }
+    return view;
+}
+
+/// False when no ray from the light can meet both triangles (their light views are apart);
+/// the 1e-9 margin keeps touching views together.
+bool may_overlap(const LightView& a, const LightView& b, const LightCentre& light) {
+    if (light.at_infinity) {
+        const DVec3 w(light.direction);
+        DVec3 d = b.centre - a.centre;
+        d -= glm::dot(d, w) * w;
+        return glm::length(d) <= (a.radius + b.radius) * (1.0 + 1e-9);
+    }
+    const double sum = a.half_angle + b.half_angle;
+    if (sum >= 3.141592653589793)
+        return true;
+    const double angle = std::acos(std::clamp(glm::dot(a.axis, b.axis), -1.0, 1.0));
+    return angle <= sum * (1.0 + 1e-9) + 1e-12;
+}
+
 struct Occluder {
     std::array<DVec3, 3> vertices;
     uint32_t shape = 0;
     uint32_t primitive = 0;
+    LightView view;
 };
 
 using Polygon3 = std::vector<DVec3>;
@@ -62,7 +105,8 @@ std::vector<Occluder> collect_occluders(const std::vector<Shape>& shapes, const 
             const DVec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
             if (closed && !(light_height(light, v[0], n) > 0.0))
                 continue;
-            occluders.push_back({v, static_cast<uint32_t>(s), static_cast<uint32_t>(i)});
+            occluders.push_back(
+                {v, static_cast<uint32_t>(s), static_cast<uint32_t>(i), light_view(v, light)});
         }
     }
     return occluders;
@@ -164,8 +208,9 @@ FaceDetail clip_face(const std::array<DVec3, 3>& v, uint32_t shape, uint32_t pri
     const double tolerance = kOnLine * size;
     detail.lit.push_back(detail.face);
     std::vector<ConvexPolygon> next;
+    const LightView view = light_view(v, light);
     for (const Occluder& o : occluders) {
-        if (o.shape == shape && o.primitive == primitive)
+        if ((o.shape == shape && o.primitive == primitive) || !may_overlap(view, o.view, light))
             continue;
         const std::vector<HalfPlane> edges = shadow_edges(o, f, light, light_h, size);
         if (edges.empty())
@@ -181,7 +226,26 @@ FaceDetail clip_face(const std::array<DVec3, 3>& v, uint32_t shape, uint32_t pri
             continue;
         ++clipped_pairs;
         next.clear();
-        for (const ConvexPolygon& piece : detail.lit) {
+        // Only pieces whose bounding rectangle meets the shadow's (within the face) can be cut.
+        DVec2 lo = probe.vertices.front(), hi = lo;
+        for (const DVec2& p : probe.vertices) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        lo -= DVec2(tolerance);
+        hi += DVec2(tolerance);
+        for (ConvexPolygon& piece : detail.lit) {
+            DVec2 piece_lo = piece.vertices.front(), piece_hi = piece_lo;
+            for (const DVec2& p : piece.vertices) {
+                piece_lo = glm::min(piece_lo, p);
+                piece_hi = glm::max(piece_hi, p);
+            }
+            const bool apart =
+                piece_hi.x < lo.x || piece_lo.x > hi.x || piece_hi.y < lo.y || piece_lo.y > hi.y;
+            if (apart) {
+                next.push_back(std::move(piece));
+                continue;
+            }
             ConvexPolygon inside = piece;
             for (const HalfPlane& h : edges) {
                 PolygonSplit s = split(inside, h, tolerance);
