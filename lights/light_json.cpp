@@ -166,23 +166,15 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
             light.shadows = ShadowMode::None;
         } else if (mode == "map") {
             light.shadows = ShadowMode::Map;
-        } else if (mode == "shadow-volume") {
-            // Silhouettes extruded from one centre of projection: a point (Crow 1977) or the
-            // point at infinity of a parallel light.
+        } else if (mode == "shadow-volume" || mode == "object-space") {
+            // Polygons projected from one centre: a point (Crow 1977; Atherton, Weiler &
+            // Greenberg 1978) or the point at infinity of a parallel light.
             if (!is_delta(light))
-                s->fail(
-                    "\"shadow-volume\" shadows need a point, spot, goniometric or directional "
-                    "light (a " +
-                    light_type_name(light) + " light has no single centre of projection)");
-            light.shadows = ShadowMode::ShadowVolume;
-        } else if (mode == "object-space") {
-            // Shadow polygons projected from one centre (Atherton, Weiler & Greenberg 1978).
-            if (!is_delta(light))
-                s->fail(
-                    "\"object-space\" shadows need a point, spot, goniometric or directional "
-                    "light (a " +
-                    light_type_name(light) + " light has no single centre of projection)");
-            light.shadows = ShadowMode::ObjectSpace;
+                s->fail("\"" + mode +
+                        "\" shadows need a point, spot, goniometric or directional light (a " +
+                        light_type_name(light) + " light has no single centre of projection)");
+            light.shadows =
+                mode == "shadow-volume" ? ShadowMode::ShadowVolume : ShadowMode::ObjectSpace;
         } else {
             s->fail(
                 "unknown shadow mode (expected \"ray\", \"none\", \"map\", "

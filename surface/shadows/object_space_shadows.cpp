@@ -1,6 +1,7 @@
 #include "surface/shadows/object_space_shadows.h"
 
 #include "surface/shadows/shadow_polygon_cache.h"
+#include "surface/shadows/sphere_shadow_rays.h"
 
 namespace kasumi {
 
@@ -12,35 +13,21 @@ ObjectSpaceShadows::ObjectSpaceShadows(std::shared_ptr<const ShadowPolygons> pol
     for (size_t s = 0; s < m_polygons->faces.size(); ++s)
         for (const FaceDetail& face : m_polygons->faces[s])
             m_grids[s].emplace_back(face.shadowed);
-    std::vector<Shape> spheres;
-    for (const Shape& shape : shapes)
-        if (std::holds_alternative<SphereShape>(shape.geometry))
-            spheres.push_back(shape);
-    if (!spheres.empty())
-        m_spheres = std::make_unique<SurfaceScene>(spheres);
+    m_spheres = sphere_scene(shapes);
 }
 
 ObjectSpaceShadows::~ObjectSpaceShadows() = default;
 
-bool ObjectSpaceShadows::ray_blocked(const SurfaceScene& scene, const Vec3& origin) const {
-    if (m_light.at_infinity)
-        return scene.occluded(Ray{origin, m_light.direction, 0.0f, kInfinity});
-    const Vec3 d = m_light.position - origin;
-    const float distance = glm::length(d);
-    return distance > 0.0f &&
-           scene.occluded(Ray{origin, d / distance, 0.0f, distance * (1.0f - 1e-5f)});
-}
-
 bool ObjectSpaceShadows::in_shadow(const SurfaceHit& hit, const Vec3& origin) const {
     const std::vector<std::vector<FaceDetail>>& faces = m_polygons->faces;
     if (hit.shape >= faces.size() || hit.primitive >= faces[hit.shape].size())
-        return ray_blocked(*m_scene, origin);  // a sphere: not a polygon
+        return shadow_ray_blocked(*m_scene, origin, m_light);  // a sphere: not a polygon
     const FaceDetail& face = faces[hit.shape][hit.primitive];
     if (!face.faces_light)
         return true;
     if (m_grids[hit.shape][hit.primitive].contains(to_frame(face.frame, DVec3(hit.position))))
         return true;
-    return m_spheres != nullptr && ray_blocked(*m_spheres, origin);
+    return m_spheres != nullptr && shadow_ray_blocked(*m_spheres, origin, m_light);
 }
 
 ObjectSpaceShadowSet::ObjectSpaceShadowSet(const std::vector<Shape>& shapes,

@@ -33,8 +33,6 @@ class ObjectSpaceShadows {
     const ShadowPolygons& polygons() const { return *m_polygons; }
 
   private:
-    bool ray_blocked(const SurfaceScene& scene, const Vec3& origin) const;
-
     std::shared_ptr<const ShadowPolygons> m_polygons;
     LightCentre m_light;
     std::vector<std::vector<PolygonGrid>> m_grids;  ///< [shape][primitive], shadowed pieces

@@ -1,5 +1,6 @@
 #include "surface/shadows/shadow_volume.h"
 
+#include "surface/shadows/sphere_shadow_rays.h"
 #include "surface/shadows/welded_mesh.h"
 
 #include <map>
@@ -119,12 +120,7 @@ ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const LightCentre
         shape.geometry = std::move(faces);
         m_faces = std::make_unique<SurfaceScene>(std::vector<Shape>{std::move(shape)});
     }
-    std::vector<Shape> spheres;
-    for (const Shape& shape : shapes)
-        if (std::holds_alternative<SphereShape>(shape.geometry))
-            spheres.push_back(shape);
-    if (!spheres.empty())
-        m_spheres = std::make_unique<SurfaceScene>(spheres);
+    m_spheres = sphere_scene(shapes);
 }
 
 ShadowVolumes::~ShadowVolumes() = default;
@@ -165,14 +161,7 @@ int ShadowVolumes::depth_pass_count(const Vec3& eye, const Vec3& p) const {
 bool ShadowVolumes::in_shadow(const Vec3& p, const Vec3& view_direction) const {
     if (depth_fail_count(p, view_direction) > 0)
         return true;
-    if (m_spheres == nullptr)
-        return false;
-    if (m_light.at_infinity)
-        return m_spheres->occluded(Ray{p, m_light.direction, 0.0f, kInfinity});
-    const Vec3 d = m_light.position - p;
-    const float distance = glm::length(d);
-    return distance > 0.0f &&
-           m_spheres->occluded(Ray{p, d / distance, 0.0f, distance * (1.0f - 1e-5f)});
+    return m_spheres != nullptr && shadow_ray_blocked(*m_spheres, p, m_light);
 }
 
 ShadowVolumeSet::ShadowVolumeSet(const std::vector<Shape>& shapes, const std::vector<Light>& lights,

@@ -133,14 +133,10 @@ Comparison compare_image(const std::vector<Shape>& shapes, const LightCentre& li
     const ObjectSpaceShadows shadows(
         std::make_shared<const ShadowPolygons>(build_shadow_polygons(shapes, light)), light, shapes,
         scene);
-    const Vec3 forward = glm::normalize(target - eye);
-    const Vec3 right = glm::normalize(glm::cross(forward, Vec3(0, 1, 0)));
-    const Vec3 up = glm::cross(right, forward);
+    const PinholeView view = pinhole_view(eye, target, w, h);
     // -1: no surface or facing away from the light; else the shape index * 2 + (shadowed).
     const auto ray_state = [&](float x, float y) {
-        const float sx = (2.0f * x / w - 1.0f) * 0.8f;
-        const float sy = (1.0f - 2.0f * y / h) * 0.8f * h / w;
-        const Vec3 dir = glm::normalize(forward + sx * right + sy * up);
+        const Vec3 dir = view.direction(x, y);
         const auto hit = scene.intersect(Ray{eye, dir, 0.0f, kInfinity});
         if (!hit)
             return -1;
@@ -158,9 +154,7 @@ Comparison compare_image(const std::vector<Shape>& shapes, const LightCentre& li
     Comparison c;
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const float sx = (2.0f * (x + 0.5f) / w - 1.0f) * 0.8f;
-            const float sy = (1.0f - 2.0f * (y + 0.5f) / h) * 0.8f * h / w;
-            const Vec3 dir = glm::normalize(forward + sx * right + sy * up);
+            const Vec3 dir = view.direction(x + 0.5f, y + 0.5f);
             const auto hit = scene.intersect(Ray{eye, dir, 0.0f, kInfinity});
             if (!hit)
                 continue;

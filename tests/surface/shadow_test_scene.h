@@ -96,4 +96,27 @@ inline std::vector<Shape> mesh_scene() {
     return shapes;
 }
 
+/// A w × h pinhole image from `eye` toward `target`, 0.8 wide per unit distance on each side.
+struct PinholeView {
+    Vec3 eye, forward, right, up;
+    int w = 0, h = 0;
+    /// Unit direction through the image point (x, y), in pixels from the top left corner.
+    Vec3 direction(float x, float y) const {
+        const float sx = (2.0f * x / w - 1.0f) * 0.8f;
+        const float sy = (1.0f - 2.0f * y / h) * 0.8f * h / w;
+        return glm::normalize(forward + sx * right + sy * up);
+    }
+};
+
+inline PinholeView pinhole_view(const Vec3& eye, const Vec3& target, int w, int h) {
+    PinholeView v;
+    v.eye = eye;
+    v.forward = glm::normalize(target - eye);
+    v.right = glm::normalize(glm::cross(v.forward, Vec3(0, 1, 0)));
+    v.up = glm::cross(v.right, v.forward);
+    v.w = w;
+    v.h = h;
+    return v;
+}
+
 }  // namespace kasumi

@@ -24,15 +24,11 @@ Comparison compare_image(const std::vector<Shape>& shapes, const LightCentre& li
                          const Vec3& eye, const Vec3& target, int w, int h) {
     const SurfaceScene scene(shapes);
     const ShadowVolumes volumes(shapes, light, scene.bounds());
-    const Vec3 forward = glm::normalize(target - eye);
-    const Vec3 right = glm::normalize(glm::cross(forward, Vec3(0, 1, 0)));
-    const Vec3 up = glm::cross(right, forward);
+    const PinholeView view = pinhole_view(eye, target, w, h);
     Comparison c;
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const float sx = (2.0f * (x + 0.5f) / w - 1.0f) * 0.8f;
-            const float sy = (1.0f - 2.0f * (y + 0.5f) / h) * 0.8f * h / w;
-            const Vec3 dir = glm::normalize(forward + sx * right + sy * up);
+            const Vec3 dir = view.direction(x + 0.5f, y + 0.5f);
             const auto hit = scene.intersect(Ray{eye, dir, 0.0f, kInfinity});
             if (!hit)
                 continue;
