@@ -24,23 +24,12 @@
 #include "core/math.h"
 #include "surface/shadows/convex_polygon.h"
 #include "surface/shadows/light_centre.h"
+#include "surface/shadows/shadow_projection.h"
 #include "surface/shape.h"
 
 #include <vector>
 
 namespace kasumi {
-
-/// A face's plane frame: p = origin + u e_u + v e_v (world space, metres); `normal` = e_u × e_v
-/// points to the light's side.
-struct FaceFrame {
-    DVec3 origin{0.0};
-    DVec3 e_u{1.0, 0.0, 0.0};
-    DVec3 e_v{0.0, 1.0, 0.0};
-    DVec3 normal{0.0, 0.0, 1.0};
-};
-
-/// (u, v) of a world point in the frame (its projection onto the plane).
-DVec2 to_frame(const FaceFrame& frame, const DVec3& p);
 
 /// The surface-detail polygons of one triangle face: `lit` and `shadowed` together partition
 /// `face` (the triangle in its frame).
