@@ -136,20 +136,7 @@ Comparison compare_image(const std::vector<Shape>& shapes, const LightCentre& li
     const PinholeView view = pinhole_view(eye, target, w, h);
     // -1: no surface or facing away from the light; else the shape index * 2 + (shadowed).
     const auto ray_state = [&](float x, float y) {
-        const Vec3 dir = view.direction(x, y);
-        const auto hit = scene.intersect(Ray{eye, dir, 0.0f, kInfinity});
-        if (!hit)
-            return -1;
-        Vec3 n = hit->geometric_normal;
-        if (glm::dot(n, dir) > 0.0f)
-            n = -n;
-        const Vec3 wi = toward_light(light, hit->position);
-        if (glm::dot(n, wi) <= 0.0f)
-            return -1;
-        const Vec3 origin = offset_ray_origin(*hit, wi);
-        const float reach =
-            light.at_infinity ? kInfinity : glm::length(light.position - origin) * (1 - 1e-5f);
-        return int(hit->shape) * 2 + (scene.occluded(Ray{origin, wi, 0.0f, reach}) ? 1 : 0);
+        return ray_shadow_state(scene, light, view, x, y);
     };
     Comparison c;
     for (int y = 0; y < h; ++y) {

@@ -2,7 +2,9 @@
 // Shared by the polygon shadow tests (shadow volumes, object-space shadows): a scene of a
 // rotated icosahedron, a non-convex L-shaped prism standing on the floor, a box, an open tilted
 // plate, a panel modelled on both sides and an open fold.
+#include "surface/shadows/light_centre.h"
 #include "surface/shape.h"
+#include "surface/surface_scene.h"
 
 #include <cmath>
 
@@ -117,6 +119,26 @@ inline PinholeView pinhole_view(const Vec3& eye, const Vec3& target, int w, int 
     v.w = w;
     v.h = h;
     return v;
+}
+
+/// By ray tracing, what image point (x, y) sees: −1 for nothing, or a surface turned away from
+/// the light; else shape index × 2 + 1 if a shadow ray toward the light is blocked, + 0 if not.
+inline int ray_shadow_state(const SurfaceScene& scene, const LightCentre& light,
+                            const PinholeView& view, float x, float y) {
+    const Vec3 dir = view.direction(x, y);
+    const auto hit = scene.intersect(Ray{view.eye, dir, 0.0f, kInfinity});
+    if (!hit)
+        return -1;
+    Vec3 n = hit->geometric_normal;
+    if (glm::dot(n, dir) > 0.0f)
+        n = -n;
+    const Vec3 wi = toward_light(light, hit->position);
+    if (glm::dot(n, wi) <= 0.0f)
+        return -1;
+    const Vec3 origin = offset_ray_origin(*hit, wi);
+    const float reach =
+        light.at_infinity ? kInfinity : glm::length(light.position - origin) * (1 - 1e-5f);
+    return int(hit->shape) * 2 + (scene.occluded(Ray{origin, wi, 0.0f, reach}) ? 1 : 0);
 }
 
 }  // namespace kasumi
