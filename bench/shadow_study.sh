@@ -12,10 +12,13 @@
 # The polygon block (SCENES "polygons") puts the lecture's umbra methods side by side on the
 # polygon scenes shadow_volumes.json and shadow_polygons_concave.json, with their point light
 # and with a directional light: ray tracing, object-space detail polygons, shadow volumes and a
-# 2048² shadow map (the scanline method is not built yet), each at three image sizes, with the
+# 2048² shadow map, each at three image sizes, with the
 # shadow stage's build time (from `render -v`: build/object-space, build/shadow-volumes,
 # build/shadow-maps) and the render time per pixel, and the error against ray tracing at the
-# same size.
+# same size. The scanline method (POLYGON_METHODS "scanline") has no render path yet: its row
+# comes from bench/scanline_shadow_bench (the whole scanline pass, visibility and shadow spans,
+# in the build column; that time per pixel in the render column; the fraction of light-facing
+# visible pixels whose lit/unlit state differs from a shadow ray; no RMSE: nothing is shaded).
 #
 # Usage: bench/shadow_study.sh [BUILD_DIR]   (default build/release; needs targets kasumi and
 #        shadow_compare).  Environment: RUNS (default 3), THREADS (default 2), OUT (scratch dir),
@@ -29,6 +32,7 @@ cd "$(dirname "$0")/.."
 BUILD=${1:-build/release}
 KASUMI=$BUILD/apps/kasumi
 COMPARE=$BUILD/bench/shadow_compare
+SCANLINE=$BUILD/bench/scanline_shadow_bench
 RUNS=${RUNS:-3}
 THREADS=${THREADS:-2}
 OUT=${OUT:-$(mktemp -d /tmp/kasumi_shadow_study.XXXXXX)}
@@ -36,7 +40,7 @@ RESOLUTIONS=${RESOLUTIONS:-"256 512 1024 2048 4096"}
 MAX_AREA_RES=${MAX_AREA_RES:-1024}
 SCENES=${SCENES:-"shadow_maps soft_shadows shadow_volumes polygons"}
 POLYGON_SIZES=${POLYGON_SIZES:-"320x200 640x400 1280x800"}
-POLYGON_METHODS=${POLYGON_METHODS:-"ray object-space shadow-volume map"}
+POLYGON_METHODS=${POLYGON_METHODS:-"ray scanline object-space shadow-volume map"}
 read -r -a EXTRA_ARGS <<< "${EXTRA:-}"
 mkdir -p "$OUT"
 
@@ -114,6 +118,18 @@ polygons() {
             [[ $light == directional ]] && light_sets=(--set "/lights/0=$sun")
             for size in $POLYGON_SIZES; do
                 for method in $POLYGON_METHODS; do
+                    if [[ $method == scanline ]]; then
+                        local args=() json
+                        [[ $light == directional ]] && args=("/lights/0=$sun")
+                        json=$("$SCANLINE" "data/scenes/$scene.json" "$size" "$RUNS" "${args[@]}")
+                        awk -v scene="$scene" -v light="$light" -v size="$size" '{
+                            match($0, /"pixels": [0-9.e+-]+/); n = substr($0, RSTART + 10, RLENGTH - 10)
+                            match($0, /"scanline_s": [0-9.e+-]+/); t = substr($0, RSTART + 14, RLENGTH - 14)
+                            match($0, /"differ_fraction": [0-9.e+-]+/); d = substr($0, RSTART + 19, RLENGTH - 19)
+                            printf "| %s | %s | scanline | %s | %.2f | %.0f | %s | - |\n", scene, light, size, 1000 * t, 1e9 * t / n, d
+                        }' <<< "$json"
+                        continue
+                    fi
                     local sets=(--res "$size" "${light_sets[@]}" --set "/lights/0/shadows=\"$method\"")
                     [[ $method == map ]] && sets+=(--set '/lights/0/shadow_map={"resolution": 2048}')
                     local name="poly_${scene}_${light}_${size}_${method}" build per_pixel error
