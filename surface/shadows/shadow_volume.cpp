@@ -87,9 +87,10 @@ ShadowVolumeGeometry build_shadow_volumes(const std::vector<Shape>& shapes,
     return out;
 }
 
-ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const LightCentre& light,
-                             const Bounds3& scene_bounds)
-    : m_light(light), m_geometry(build_shadow_volumes(shapes, light, scene_bounds)) {
+namespace {
+
+/// The faces of `g` as one Embree scene (null when there are none) and their multiplicities.
+std::unique_ptr<SurfaceScene> face_scene(const ShadowVolumeGeometry& g, std::vector<int>& weights) {
     MeshShape faces;
     faces.file = "(shadow volumes)";
     TriangleMesh& mesh = faces.mesh;
@@ -98,27 +99,56 @@ ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const LightCentre
         mesh.positions.insert(mesh.positions.end(), {a, b, c});
         mesh.triangles.push_back({base, base + 1, base + 2});
     };
-    for (size_t i = 0; i < m_geometry.near_caps.size(); ++i) {
-        const auto& t = m_geometry.near_caps[i];
+    for (size_t i = 0; i < g.near_caps.size(); ++i) {
+        const auto& t = g.near_caps[i];
         add(t[0], t[1], t[2]);
-        m_face_weights.push_back(m_geometry.cap_weights[i]);
+        weights.push_back(g.cap_weights[i]);
     }
-    for (size_t i = 0; i < m_geometry.far_caps.size(); ++i) {
-        const auto& t = m_geometry.far_caps[i];
+    for (size_t i = 0; i < g.far_caps.size(); ++i) {
+        const auto& t = g.far_caps[i];
         add(t[0], t[1], t[2]);
-        m_face_weights.push_back(m_geometry.cap_weights[i]);
+        weights.push_back(g.cap_weights[i]);
     }
-    for (size_t i = 0; i < m_geometry.sides.size(); ++i) {
-        const auto& q = m_geometry.sides[i];
+    for (size_t i = 0; i < g.sides.size(); ++i) {
+        const auto& q = g.sides[i];
         add(q[0], q[1], q[2]);
         add(q[0], q[2], q[3]);
-        m_face_weights.insert(m_face_weights.end(), 2, m_geometry.side_weights[i]);
+        weights.insert(weights.end(), 2, g.side_weights[i]);
     }
-    if (!mesh.triangles.empty()) {
-        Shape shape;
-        shape.name = "shadow volumes";
-        shape.geometry = std::move(faces);
-        m_faces = std::make_unique<SurfaceScene>(std::vector<Shape>{std::move(shape)});
+    if (mesh.triangles.empty())
+        return nullptr;
+    Shape shape;
+    shape.name = "shadow volumes";
+    shape.geometry = std::move(faces);
+    return std::make_unique<SurfaceScene>(std::vector<Shape>{std::move(shape)});
+}
+
+template <typename T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+}
+
+}  // namespace
+
+ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const LightCentre& light,
+                             const Bounds3& scene_bounds)
+    : m_light(light) {
+    // One face scene per shape: faces of different shapes' volumes may coincide (a quad lying
+    // on a box's top, quads meeting along an edge) and each must be counted, whereas the
+    // counting loop below counts the faces of one scene met at one t once.
+    for (const Shape& shape : shapes) {
+        const ShadowVolumeGeometry g = build_shadow_volumes({shape}, light, scene_bounds);
+        ShapeFaces faces;
+        faces.scene = face_scene(g, faces.weights);
+        faces.max_crossings = 3 * g.near_caps.size() + 2 * g.sides.size() + 8;
+        if (faces.scene != nullptr)
+            m_faces.push_back(std::move(faces));
+        append(m_geometry.near_caps, g.near_caps);
+        append(m_geometry.far_caps, g.far_caps);
+        append(m_geometry.cap_weights, g.cap_weights);
+        append(m_geometry.sides, g.sides);
+        append(m_geometry.side_weights, g.side_weights);
+        m_geometry.silhouette_edges += g.silhouette_edges;
     }
     m_spheres = sphere_scene(shapes);
 }
@@ -126,22 +156,21 @@ ShadowVolumes::ShadowVolumes(const std::vector<Shape>& shapes, const LightCentre
 ShadowVolumes::~ShadowVolumes() = default;
 
 int ShadowVolumes::count_crossings(const Ray& ray, float sign_of_exit) const {
-    if (m_faces == nullptr)
-        return 0;
     int count = 0;
-    Ray r = ray;
-    // Each face is crossed at most once; the bound only guards against a stuck loop.
-    const size_t max_crossings = 3 * m_geometry.near_caps.size() + 2 * m_geometry.sides.size() + 8;
-    for (size_t k = 0; k < max_crossings; ++k) {
-        const auto hit = m_faces->intersect(r);
-        if (!hit)
-            break;
-        // Faces sharing an edge hit at the same t are counted once: the next search starts
-        // strictly after t.
-        const bool exits = glm::dot(hit->geometric_normal, r.direction) > 0.0f;
-        const int weight = m_face_weights[hit->primitive];
-        count += (exits ? 1 : -1) * static_cast<int>(sign_of_exit) * weight;
-        r.t_min = hit->t;
+    for (const ShapeFaces& faces : m_faces) {
+        Ray r = ray;
+        // Each face is crossed at most once; the bound only guards against a stuck loop.
+        for (size_t k = 0; k < faces.max_crossings; ++k) {
+            const auto hit = faces.scene->intersect(r);
+            if (!hit)
+                break;
+            // Faces sharing an edge hit at the same t are counted once: the next search starts
+            // strictly after t.
+            const bool exits = glm::dot(hit->geometric_normal, r.direction) > 0.0f;
+            const int weight = faces.weights[hit->primitive];
+            count += (exits ? 1 : -1) * static_cast<int>(sign_of_exit) * weight;
+            r.t_min = hit->t;
+        }
     }
     return count;
 }

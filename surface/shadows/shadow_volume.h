@@ -74,8 +74,13 @@ class ShadowVolumes {
 
     LightCentre m_light;
     ShadowVolumeGeometry m_geometry;
-    std::vector<int> m_face_weights;          ///< per triangle of m_faces
-    std::unique_ptr<SurfaceScene> m_faces;    ///< null when no shape casts a volume
+    /// The volume faces of one shape, with the multiplicity of each triangle.
+    struct ShapeFaces {
+        std::unique_ptr<SurfaceScene> scene;
+        std::vector<int> weights;
+        size_t max_crossings = 0;
+    };
+    std::vector<ShapeFaces> m_faces;          ///< shapes that cast a volume
     std::unique_ptr<SurfaceScene> m_spheres;  ///< null when the scene has no spheres
 };
 
