@@ -5,6 +5,7 @@
 #include "surface/shadows/light_centre.h"
 #include "surface/shape.h"
 #include "surface/surface_scene.h"
+#include "tests/surface/test_shapes.h"
 
 #include <cmath>
 
@@ -95,6 +96,43 @@ inline std::vector<Shape> mesh_scene() {
                       Vec3(2.9f, 1.2f, 1.0f)};
     fold.triangles = {{0, 1, 2}, {1, 0, 3}};
     shapes.push_back(mesh_shape(fold));
+    return shapes;
+}
+
+/// The hard cases around the shared scene's light at (0.4, 4.2, 0.9).
+inline std::vector<Shape> hard_case_scene() {
+    std::vector<Shape> shapes = mesh_scene();
+    // Touching the floor: a box standing on it.
+    shapes.push_back(box(Vec3(1.2f, 0.0f, 1.6f), Vec3(1.6f, 0.5f, 2.0f)));
+    // Coplanar faces: a second box whose top is level with the first's and touches it, and a
+    // quad lying on both tops.
+    shapes.push_back(box(Vec3(1.6f, 0.0f, 1.6f), Vec3(2.0f, 0.5f, 2.0f)));
+    shapes.push_back(quad(Vec3(1.4f, 0.5f, 1.9f), Vec3(1.8f, 0.5f, 1.9f), Vec3(1.8f, 0.5f, 1.7f),
+                          Vec3(1.4f, 0.5f, 1.7f)));
+    // T-junctions: a platform of one quad beside two half-width quads (the middle vertex of
+    // their shared side lies on the long quad's edge).
+    shapes.push_back(quad(Vec3(-2.0f, 0.3f, 2.6f), Vec3(-1.0f, 0.3f, 2.6f), Vec3(-1.0f, 0.3f, 2.0f),
+                          Vec3(-2.0f, 0.3f, 2.0f)));
+    shapes.push_back(quad(Vec3(-2.0f, 0.3f, 2.0f), Vec3(-1.5f, 0.3f, 2.0f), Vec3(-1.5f, 0.3f, 1.4f),
+                          Vec3(-2.0f, 0.3f, 1.4f)));
+    shapes.push_back(quad(Vec3(-1.5f, 0.3f, 2.0f), Vec3(-1.0f, 0.3f, 2.0f), Vec3(-1.0f, 0.3f, 1.4f),
+                          Vec3(-1.5f, 0.3f, 1.4f)));
+    // Slivers: a needle triangle and a sheet 1 mm thin over the platform.
+    TriangleMesh needle;
+    needle.positions = {Vec3(-2.2f, 1.0f, 2.0f), Vec3(-0.8f, 1.1f, 1.8f),
+                        Vec3(-0.8f, 1.1f, 1.802f)};
+    needle.triangles = {{0, 1, 2}};
+    shapes.push_back(mesh_shape(needle));
+    shapes.push_back(box(Vec3(-1.9f, 0.8f, 1.5f), Vec3(-1.1f, 0.801f, 1.6f)));
+    // The light in a face's plane: a vertical panel through x = 0.4.
+    shapes.push_back(quad(Vec3(0.4f, 0.0f, -2.5f), Vec3(0.4f, 0.0f, -3.5f), Vec3(0.4f, 1.0f, -3.5f),
+                          Vec3(0.4f, 1.0f, -2.5f)));
+    // A receiver reaching behind and above the light: a tall back wall, with a plate nearly
+    // level with the light casting onto its top.
+    shapes.push_back(quad(Vec3(-4.0f, 0.0f, -3.0f), Vec3(4.0f, 0.0f, -3.0f),
+                          Vec3(4.0f, 6.0f, -3.0f), Vec3(-4.0f, 6.0f, -3.0f)));
+    shapes.push_back(quad(Vec3(-0.4f, 4.1f, -0.6f), Vec3(0.2f, 4.1f, -0.6f),
+                          Vec3(0.2f, 4.15f, -1.2f), Vec3(-0.4f, 4.15f, -1.2f)));
     return shapes;
 }
 

@@ -100,6 +100,19 @@ TEST(ShadowVolumeTest, ParallelLightAgreesWithRayTracingOnEveryPixel) {
     }
 }
 
+// Coincident faces of different shapes' volumes (a quad lying on two box tops whose caps share
+// its plane, quads meeting along an edge, T-junctions) are each counted: every pixel agrees.
+TEST(ShadowVolumeTest, CoincidentFacesOfDifferentShapesAgreeWithRayTracing) {
+    for (const LightCentre& light :
+         {point_centre(Vec3(0.4f, 4.2f, 0.9f)), parallel_centre(Vec3(-0.5f, 1.0f, 0.6f))}) {
+        const Comparison c = compare_image(hard_case_scene(), light, Vec3(0.7f, 3.1f, 6.3f),
+                                           Vec3(0.0f, 0.5f, 0.0f), 320, 200);
+        EXPECT_GT(c.shaded, 30000);
+        EXPECT_GT(c.shadowed, 500);
+        EXPECT_EQ(c.differ, 0);
+    }
+}
+
 // The eye in a parallel light's shadow of the box: depth-fail still agrees.
 TEST(ShadowVolumeTest, ParallelLightEyeInsideVolume) {
     const Vec3 sun = glm::normalize(Vec3(0.3f, 1.0f, 0.2f));
