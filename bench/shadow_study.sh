@@ -9,22 +9,38 @@
 # against a converged ray-traced reference, map builds timed, Pareto front) is the `kasumi
 # study` run `bench/studies.sh shadows area-shadows area-samples` (docs/study.md).
 #
+# The polygon block (SCENES "polygons") puts the lecture's umbra methods side by side on the
+# polygon scenes shadow_volumes.json and shadow_polygons_concave.json, with their point light
+# and with a directional light: ray tracing, object-space detail polygons, shadow volumes and a
+# 2048² shadow map, each at three image sizes, with the
+# shadow stage's build time (from `render -v`: build/object-space, build/shadow-volumes,
+# build/shadow-maps) and the render time per pixel, and the error against ray tracing at the
+# same size. The scanline method (POLYGON_METHODS "scanline") has no render path yet: its row
+# comes from bench/scanline_shadow_bench (the whole scanline pass, visibility and shadow spans,
+# in the build column; that time per pixel in the render column; the fraction of light-facing
+# visible pixels whose lit/unlit state differs from a shadow ray; no RMSE: nothing is shaded).
+#
 # Usage: bench/shadow_study.sh [BUILD_DIR]   (default build/release; needs targets kasumi and
 #        shadow_compare).  Environment: RUNS (default 3), THREADS (default 2), OUT (scratch dir),
 #        RESOLUTIONS (default "256 512 1024 2048 4096"), MAX_AREA_RES (default 1024),
-#        SCENES (default "shadow_maps soft_shadows shadow_volumes"), EXTRA (more render
-#        arguments, e.g. "--res 320x200 --spp 1" on a busy machine).
+#        SCENES (default "shadow_maps soft_shadows shadow_volumes polygons"), EXTRA (more render
+#        arguments, e.g. "--res 320x200 --spp 1" on a busy machine), POLYGON_SIZES (default
+#        "320x200 640x400 1280x800"), POLYGON_METHODS (default "ray object-space shadow-volume
+#        map").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build/release}
 KASUMI=$BUILD/apps/kasumi
 COMPARE=$BUILD/bench/shadow_compare
+SCANLINE=$BUILD/bench/scanline_shadow_bench
 RUNS=${RUNS:-3}
 THREADS=${THREADS:-2}
 OUT=${OUT:-$(mktemp -d /tmp/kasumi_shadow_study.XXXXXX)}
 RESOLUTIONS=${RESOLUTIONS:-"256 512 1024 2048 4096"}
 MAX_AREA_RES=${MAX_AREA_RES:-1024}
-SCENES=${SCENES:-"shadow_maps soft_shadows shadow_volumes"}
+SCENES=${SCENES:-"shadow_maps soft_shadows shadow_volumes polygons"}
+POLYGON_SIZES=${POLYGON_SIZES:-"320x200 640x400 1280x800"}
+POLYGON_METHODS=${POLYGON_METHODS:-"ray scanline object-space shadow-volume map"}
 read -r -a EXTRA_ARGS <<< "${EXTRA:-}"
 mkdir -p "$OUT"
 
@@ -70,6 +86,66 @@ study() {
     done
 }
 
+# timed NAME SCENE ARGS...: RUNS verbose renders to $OUT/NAME.exr; prints "build_ms ns_per_pixel"
+# (medians): the shadow stage's build time and the render time divided by the pixel count.
+timed() {
+    local name=$1 scene=$2
+    shift 2
+    local builds=() per_pixel=()
+    for ((run = 0; run < RUNS; ++run)); do
+        local stats
+        stats=$("$KASUMI" render "$scene" -o "$OUT/$name.exr" --no-preview --threads "$THREADS" -v \
+            "${EXTRA_ARGS[@]}" "$@" 2>&1)
+        builds+=("$(awk '$1 == "time" && $2 ~ /^build\/(shadow-maps|shadow-volumes|object-space)$/ \
+            {s += $3} END {printf "%.2f", 1000 * s}' <<< "$stats")")
+        per_pixel+=("$(awk '$1 == "time" && $2 == "render" {t = $3}
+            $1 == "camera" && $2 == "rays" {n = $3} END {printf "%.0f", 1e9 * t / n}' <<< "$stats")")
+    done
+    local median='sort -g | awk "{t[NR] = \$1} END {print t[int((NR + 1) / 2)]}"'
+    echo "$(printf '%s\n' "${builds[@]}" | eval "$median") $(printf '%s\n' "${per_pixel[@]}" | eval "$median")"
+}
+
+# polygons: the umbra methods on the polygon scenes, point and directional light, three sizes.
+polygons() {
+    local sun='{"name": "sun", "type": "directional", "direction": [0.4, -1, -0.3], "illuminance_lux": 3}'
+    echo
+    echo "| scene | light | shadows | size | build (ms) | render (ns/pixel) | pixels differing (> 1%) | RMSE (cd/m²) |"
+    echo "|---|---|---|---|---|---|---|---|"
+    local scene light size method
+    for scene in shadow_volumes shadow_polygons_concave; do
+        for light in point directional; do
+            local light_sets=()
+            [[ $light == directional ]] && light_sets=(--set "/lights/0=$sun")
+            for size in $POLYGON_SIZES; do
+                for method in $POLYGON_METHODS; do
+                    if [[ $method == scanline ]]; then
+                        local args=() json
+                        [[ $light == directional ]] && args=("/lights/0=$sun")
+                        json=$("$SCANLINE" "data/scenes/$scene.json" "$size" "$RUNS" "${args[@]}")
+                        awk -v scene="$scene" -v light="$light" -v size="$size" '{
+                            match($0, /"pixels": [0-9.e+-]+/); n = substr($0, RSTART + 10, RLENGTH - 10)
+                            match($0, /"scanline_s": [0-9.e+-]+/); t = substr($0, RSTART + 14, RLENGTH - 14)
+                            match($0, /"differ_fraction": [0-9.e+-]+/); d = substr($0, RSTART + 19, RLENGTH - 19)
+                            printf "| %s | %s | scanline | %s | %.2f | %.0f | %s | - |\n", scene, light, size, 1000 * t, 1e9 * t / n, d
+                        }' <<< "$json"
+                        continue
+                    fi
+                    local sets=(--res "$size" "${light_sets[@]}" --set "/lights/0/shadows=\"$method\"")
+                    [[ $method == map ]] && sets+=(--set '/lights/0/shadow_map={"resolution": 2048}')
+                    local name="poly_${scene}_${light}_${size}_${method}" build per_pixel error
+                    read -r build per_pixel <<< "$(timed "$name" "data/scenes/$scene.json" "${sets[@]}")"
+                    if [[ $method == ray ]]; then
+                        error="0 | 0"
+                    else
+                        error=$(compare "poly_${scene}_${light}_${size}_ray" "$name")
+                    fi
+                    echo "| $scene | $light | $method | $size | $build | $per_pixel | $error |"
+                done
+            done
+        done
+    done
+}
+
 echo "| scene | shadows | pixels differing (> 1%) | RMSE (cd/m²) | time (s, median of $RUNS) |"
 echo "|---|---|---|---|---|"
 for scene in $SCENES; do
@@ -82,5 +158,6 @@ for scene in $SCENES; do
         t_vol=$(render volumes_sv data/scenes/shadow_volumes.json)
         echo "| shadow_volumes | shadow-volume | $(compare volumes_ray volumes_sv) | $t_vol |"
         ;;
+    polygons) polygons ;;
     esac
 done

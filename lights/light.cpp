@@ -31,6 +31,11 @@ bool is_delta(const Light& light) {
                       light.emitter);
 }
 
+bool shadows_by_stage(ShadowMode mode) {
+    return mode == ShadowMode::Map || mode == ShadowMode::ShadowVolume ||
+           mode == ShadowMode::ObjectSpace;
+}
+
 IncidentLight incident_light(const Light& light, const Vec3& p) {
     return std::visit(
         [&](const auto& e) {

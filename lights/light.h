@@ -34,9 +34,14 @@ struct PointLight {
 enum class ShadowMode {
     Ray,           ///< shadow rays: one for a delta light, `samples` for an extended one
     None,          ///< the light is never blocked
-    Map,           ///< depth maps rendered from the light once per render (surface/shadow_map.h)
-    ShadowVolume,  ///< Crow's shadow volumes of the meshes, point-like lights only
+    Map,           ///< depth maps rendered from the light once per render (surface/shadows/)
+    ShadowVolume,  ///< Crow's shadow volumes of the meshes, point-like and directional lights
+    ObjectSpace,   ///< lit and shadowed detail polygons per face (Atherton et al. 1978)
 };
+
+/// True when a stage built before the first pixel decides the light's visibility (maps, shadow
+/// volumes, detail polygons) rather than a shadow ray per shading point.
+bool shadows_by_stage(ShadowMode mode);
 
 /// Settings of a light's shadow maps (docs/lights.md, "Shadow maps").
 struct ShadowMapSettings {

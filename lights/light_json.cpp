@@ -166,16 +166,19 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
             light.shadows = ShadowMode::None;
         } else if (mode == "map") {
             light.shadows = ShadowMode::Map;
-        } else if (mode == "shadow-volume") {
-            // Shadow volumes extrude silhouettes away from one point (Crow 1977).
-            if (!is_delta(light) || std::holds_alternative<DirectionalLight>(light.emitter))
-                s->fail("\"shadow-volume\" shadows need a point, spot or goniometric light (a " +
+        } else if (mode == "shadow-volume" || mode == "object-space") {
+            // Polygons projected from one centre: a point (Crow 1977; Atherton, Weiler &
+            // Greenberg 1978) or the point at infinity of a parallel light.
+            if (!is_delta(light))
+                s->fail("\"" + mode +
+                        "\" shadows need a point, spot, goniometric or directional light (a " +
                         light_type_name(light) + " light has no single centre of projection)");
-            light.shadows = ShadowMode::ShadowVolume;
+            light.shadows =
+                mode == "shadow-volume" ? ShadowMode::ShadowVolume : ShadowMode::ObjectSpace;
         } else {
             s->fail(
-                "unknown shadow mode (expected \"ray\", \"none\", \"map\" or "
-                "\"shadow-volume\")");
+                "unknown shadow mode (expected \"ray\", \"none\", \"map\", "
+                "\"shadow-volume\" or \"object-space\")");
         }
     }
     if (const auto m = reader.optional("shadow_map")) {

@@ -101,8 +101,8 @@ class LightSampleSums {
         else if (m_traced && blocked(in))
             return LightSampleOutcome::Blocked;
         float visibility = 1.0f;
-        if (m_light.shadows == ShadowMode::Map || m_light.shadows == ShadowMode::ShadowVolume) {
-            visibility = m_scene.staged_visibility(light_index(), m_hit.position, m_ng, m_origin,
+        if (shadows_by_stage(m_light.shadows)) {
+            visibility = m_scene.staged_visibility(light_index(), m_hit, m_ng, m_origin,
                                                    in.light_position, m_wo);
             if (!(visibility > 0.0f))
                 return LightSampleOutcome::Blocked;

@@ -20,9 +20,10 @@ bool SurfaceOcclusion::occluded_direction(const Vec3& from, const Vec3& directio
     return m_scene.occluded(Ray{from, direction, 0.0f, kInfinity});
 }
 
-float SceneRuntime::staged_visibility(size_t light, const Vec3& p, const Vec3& n,
+float SceneRuntime::staged_visibility(size_t light, const SurfaceHit& hit, const Vec3& n,
                                       const Vec3& origin, const Vec3& light_point,
                                       const Vec3& wo) const {
+    const Vec3& p = hit.position;
     if (m_shadow_maps != nullptr) {
         if (const LightShadowMaps* maps = m_shadow_maps->maps(light))
             return maps->visibility(p, n, light_point);
@@ -31,6 +32,10 @@ float SceneRuntime::staged_visibility(size_t light, const Vec3& p, const Vec3& n
         // Depth-fail counting along the eye ray continued beyond the point.
         if (const ShadowVolumes* volumes = m_shadow_volumes->volumes(light))
             return volumes->in_shadow(origin, -wo) ? 0.0f : 1.0f;
+    }
+    if (m_object_space != nullptr) {
+        if (const ObjectSpaceShadows* shadows = m_object_space->shadows(light))
+            return shadows->in_shadow(hit, origin) ? 0.0f : 1.0f;
     }
     return 1.0f;
 }
@@ -66,6 +71,12 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
         m_shadow_volumes =
             std::make_unique<ShadowVolumeSet>(m_desc.shapes, m_desc.lights, m_surfaces->bounds());
         m_build_times.shadow_volumes_s = since(start);
+    }
+    if (m_plan.object_space_shadows) {
+        const auto start = Clock::now();
+        m_object_space =
+            std::make_unique<ObjectSpaceShadowSet>(m_desc.shapes, m_desc.lights, *m_surfaces);
+        m_build_times.object_space_s = since(start);
     }
     if (m_plan.volume) {
         const auto start = Clock::now();

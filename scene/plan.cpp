@@ -3,7 +3,7 @@
 #include "scene/gi_plan.h"
 #include "scene/quality_plan.h"
 #include "surface/emitter_hit.h"
-#include "surface/shadow_map.h"
+#include "surface/shadows/shadow_map.h"
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
 
@@ -97,7 +97,7 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
     const bool shadows_on = !scene.shapes.empty() && scene.render.shadows;
     const char* why_off =
         scene.shapes.empty() ? "no shapes can cast shadows" : "render.shadows is false";
-    std::vector<std::string> soft, maps, volumes;
+    std::vector<std::string> soft, maps, volumes, object_space;
     for (const Light& light : scene.lights) {
         if (!is_delta(light) && light.shadows == ShadowMode::Ray)
             soft.push_back(light.name + ": " + std::to_string(light.samples) + " shadow rays" +
@@ -118,6 +118,8 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
             maps.push_back(light.name + ": " + describe_shadow_maps(light));
         if (light.shadows == ShadowMode::ShadowVolume)
             volumes.push_back(light.name);
+        if (light.shadows == ShadowMode::ObjectSpace)
+            object_space.push_back(light.name);
     }
     plan.stages.push_back(
         {"soft-shadows", shadows_on && !soft.empty(),
@@ -139,10 +141,22 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
         {"shadow-volumes", plan.shadow_volumes,
          !shadows_on       ? why_off
          : volumes.empty() ? "no light has \"shadows\": \"shadow-volume\""
-                           : "silhouette edges of boxes, quads and meshes extruded from the light, "
-                             "closed by caps; depth-fail counting by ray casting (spheres: "
-                             "shadow rays): " +
+                           : "silhouette edges of boxes, quads and meshes extruded from the light "
+                             "(along its direction for a directional light), closed by caps; "
+                             "depth-fail counting by ray casting (spheres: shadow rays): " +
                                  join(volumes)});
+    plan.object_space_shadows = shadows_on && !object_space.empty();
+    plan.stages.push_back(
+        {"object-space-shadows", plan.object_space_shadows,
+         !shadows_on ? why_off
+         : object_space.empty()
+             ? "no light has \"shadows\": \"object-space\""
+             : "pass 1 from the light clips every box, quad and mesh triangle against the "
+               "polygons in front of it into lit and shadowed detail polygons (cached while "
+               "light and geometry stay); pass 2 finds the detail polygon under each visible "
+               "point, no shadow ray (spheres are not tessellated: they receive and cast by "
+               "shadow rays): " +
+                   join(object_space)});
     bool specular = false;
     for (const Shape& shape : scene.shapes) {
         const Material& m = scene.materials[shape.material];

@@ -26,7 +26,8 @@ struct Plan {
 
     bool shadow_maps = false;     ///< depth maps from lights with "shadows": "map"
     bool shadow_volumes = false;  ///< shadow volumes for lights with "shadows": "shadow-volume"
-    bool visible_lights = false;  ///< camera and Whitted rays see polygon and sphere lights
+    bool object_space_shadows = false;  ///< detail polygons for "shadows": "object-space"
+    bool visible_lights = false;        ///< camera and Whitted rays see polygon and sphere lights
 };
 
 Plan make_plan(const SceneDesc& scene);

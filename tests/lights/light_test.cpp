@@ -114,8 +114,8 @@ TEST(LightJson, BadExtendedLightsAreLocated) {
         "/lights/0/falloff_deg = 40: must be in [0, cone_deg]");
     has(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "luminance_cd_m2": 1,
         "shadows": "shadow-volume"})",
-        "/lights/0/shadows = \"shadow-volume\": \"shadow-volume\" shadows need a point, spot or "
-        "goniometric light");
+        "/lights/0/shadows = \"shadow-volume\": \"shadow-volume\" shadows need a point, spot, "
+        "goniometric or directional light");
     has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1,
         "shadow_map": {"resolution": 512}})",
         "/lights/0/shadow_map = {\"resolution\":512}: shadow_map applies to lights with");

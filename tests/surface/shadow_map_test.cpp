@@ -1,7 +1,7 @@
 // Shadow maps against ray-traced shadows: identical away from shadow boundaries, different only
 // within a few texels of them (so the differing area shrinks as the resolution grows), no
 // self-shadowing on lit surfaces; area-light maps approach the sampled soft shadow.
-#include "surface/shadow_map.h"
+#include "surface/shadows/shadow_map.h"
 
 #include "core/rng.h"
 #include "lights/light.h"

@@ -1,4 +1,4 @@
-#include "surface/shadow_map.h"
+#include "surface/shadows/shadow_map.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

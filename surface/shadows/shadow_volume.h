@@ -1,8 +1,9 @@
 #pragma once
-/// Shadow volumes of a point light (Crow 1977, "Shadow algorithms for computer graphics"):
-/// the region an occluder hides from the light is bounded by the occluder's light-facing
-/// triangles (near cap), quads extruded away from the light from its silhouette edges (sides)
-/// and the near cap pushed out beyond the scene (far cap). A point is in shadow when it lies
+/// Shadow volumes of a point or parallel light (Crow 1977, "Shadow algorithms for computer
+/// graphics"): the region an occluder hides from the light is bounded by the occluder's
+/// light-facing triangles (near cap), quads extruded away from the light from its silhouette
+/// edges (sides: along the rays from a point light, along the light's direction for a parallel
+/// one) and the near cap pushed out beyond the scene (far cap). A point is in shadow when it lies
 /// inside at least one volume, decided by counting the volume faces a ray crosses.
 ///
 /// Counting: depth-fail ("z-fail", Carmack's reverse; Everitt & Kilgard 2002, "Practical and
@@ -20,6 +21,7 @@
 #include "core/bounds.h"
 #include "core/math.h"
 #include "lights/light.h"
+#include "surface/shadows/light_centre.h"
 #include "surface/shape.h"
 #include "surface/surface_scene.h"
 
@@ -41,16 +43,16 @@ struct ShadowVolumeGeometry {
     size_t silhouette_edges = 0;
 };
 
-/// Builds the volumes of every box, quad and mesh in `shapes` for a point light at
-/// `light_position`; far caps are pushed to 2 (|light − c| + r) + 1 m from the light, beyond
-/// every point of the sphere (c, r) bounding `scene_bounds`.
+/// Builds the volumes of every box, quad and mesh in `shapes` for `light`. Far caps lie beyond
+/// every point of the sphere (c, r) bounding `scene_bounds`: 2 (|light − c| + r) + 1 m from a
+/// point light, 4 r + 1 m along the light's direction from each vertex for a parallel light.
 ShadowVolumeGeometry build_shadow_volumes(const std::vector<Shape>& shapes,
-                                          const Vec3& light_position, const Bounds3& scene_bounds);
+                                          const LightCentre& light, const Bounds3& scene_bounds);
 
 /// The volumes of one light, ready to count crossings. Thread-safe after construction.
 class ShadowVolumes {
   public:
-    ShadowVolumes(const std::vector<Shape>& shapes, const Vec3& light_position,
+    ShadowVolumes(const std::vector<Shape>& shapes, const LightCentre& light,
                   const Bounds3& scene_bounds);
     ~ShadowVolumes();
 
@@ -70,10 +72,15 @@ class ShadowVolumes {
   private:
     int count_crossings(const Ray& ray, float sign_of_exit) const;
 
-    Vec3 m_light;
+    LightCentre m_light;
     ShadowVolumeGeometry m_geometry;
-    std::vector<int> m_face_weights;          ///< per triangle of m_faces
-    std::unique_ptr<SurfaceScene> m_faces;    ///< null when no shape casts a volume
+    /// The volume faces of one shape, with the multiplicity of each triangle.
+    struct ShapeFaces {
+        std::unique_ptr<SurfaceScene> scene;
+        std::vector<int> weights;
+        size_t max_crossings = 0;
+    };
+    std::vector<ShapeFaces> m_faces;          ///< shapes that cast a volume
     std::unique_ptr<SurfaceScene> m_spheres;  ///< null when the scene has no spheres
 };
 

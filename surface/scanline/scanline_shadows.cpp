@@ -1,0 +1,256 @@
+#include "surface/scanline/scanline_shadows.h"
+
+#include "surface/shadows/shadow_projection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace kasumi {
+
+namespace {
+
+/// Metres in front of the eye where polygons are cut (the near plane).
+constexpr double kNear = 1e-4;
+
+struct Face {
+    std::array<DVec3, 3> vertices;
+    int32_t shape = 0, primitive = 0;
+    DVec3 normal{0.0};                 ///< unit, the triangle's winding
+    std::vector<DVec2> screen;         ///< the near-clipped polygon in pixels
+    int first_row = 0, last_row = -1;  ///< scanlines whose centre it covers
+};
+
+/// A line of the face's shadow pulled back to the scanline: inside where α + β X ≥ 0, X the
+/// pixel coordinate (pixel centres at x + 0.5).
+struct SpanLine {
+    double alpha = 0.0, beta = 0.0;
+};
+
+struct Camera {
+    DVec3 eye, forward, right, up;
+    double half_width, half_height;
+    int width, height;
+    /// The (unnormalised) ray direction through image point (X, Y).
+    DVec3 direction(double x, double y) const {
+        const double sx = (2.0 * x / width - 1.0) * half_width;
+        const double sy = (1.0 - 2.0 * y / height) * half_height;
+        return forward + sx * right + sy * up;
+    }
+};
+
+std::vector<DVec2> project(const std::array<DVec3, 3>& v, const Camera& c) {
+    std::vector<DVec3> polygon;  // camera space: (right, up, forward) coordinates
+    for (const DVec3& p : v) {
+        const DVec3 d = p - c.eye;
+        polygon.emplace_back(glm::dot(d, c.right), glm::dot(d, c.up), glm::dot(d, c.forward));
+    }
+    // Sutherland–Hodgman against z >= kNear.
+    std::vector<DVec3> clipped;
+    for (size_t i = 0; i < polygon.size(); ++i) {
+        const DVec3& a = polygon[i];
+        const DVec3& b = polygon[(i + 1) % polygon.size()];
+        if (a.z >= kNear)
+            clipped.push_back(a);
+        if ((a.z >= kNear) != (b.z >= kNear))
+            clipped.push_back(a + ((kNear - a.z) / (b.z - a.z)) * (b - a));
+    }
+    std::vector<DVec2> screen;
+    for (const DVec3& p : clipped)
+        screen.emplace_back((p.x / (p.z * c.half_width) + 1.0) * 0.5 * c.width,
+                            (1.0 - p.y / (p.z * c.half_height)) * 0.5 * c.height);
+    return screen;
+}
+
+/// The x extent of a convex polygon at height y (empty when the row misses it).
+std::optional<std::pair<double, double>> row_extent(const std::vector<DVec2>& polygon, double y) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (size_t i = 0; i < polygon.size(); ++i) {
+        const DVec2& a = polygon[i];
+        const DVec2& b = polygon[(i + 1) % polygon.size()];
+        if ((a.y <= y && b.y >= y) || (b.y <= y && a.y >= y)) {
+            if (a.y == b.y) {
+                lo = std::min({lo, a.x, b.x});
+                hi = std::max({hi, a.x, b.x});
+            } else {
+                const double x = a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x);
+                lo = std::min(lo, x);
+                hi = std::max(hi, x);
+            }
+        }
+    }
+    if (!(lo <= hi))
+        return std::nullopt;
+    return std::make_pair(lo, hi);
+}
+
+}  // namespace
+
+ScanlineImage render_scanline_shadows(const std::vector<Shape>& shapes, const LightCentre& light,
+                                      const ScanlineCamera& camera) {
+    const Camera cam{DVec3(camera.eye),   DVec3(camera.forward),
+                     DVec3(camera.right), DVec3(camera.up),
+                     camera.half_width,   camera.half_width * camera.height / camera.width,
+                     camera.width,        camera.height};
+    ScanlineImage image;
+    image.width = camera.width;
+    image.height = camera.height;
+    const size_t pixels = size_t(camera.width) * camera.height;
+    image.shape.assign(pixels, -1);
+    image.primitive.assign(pixels, -1);
+    image.shadowed.assign(pixels, 0);
+
+    std::vector<std::vector<std::array<DVec3, 3>>> triangles;
+    const std::vector<PolygonOccluder> occluders = collect_occluders(shapes, light, triangles);
+    std::vector<Face> faces;
+    for (size_t s = 0; s < triangles.size(); ++s)
+        for (size_t i = 0; i < triangles[s].size(); ++i) {
+            Face f;
+            f.vertices = triangles[s][i];
+            f.shape = static_cast<int32_t>(s);
+            f.primitive = static_cast<int32_t>(i);
+            const DVec3 n =
+                glm::cross(f.vertices[1] - f.vertices[0], f.vertices[2] - f.vertices[0]);
+            if (!(glm::length(n) > 0.0))
+                continue;
+            f.normal = glm::normalize(n);
+            f.screen = project(f.vertices, cam);
+            if (f.screen.size() < 3)
+                continue;
+            double y_min = f.screen[0].y, y_max = y_min;
+            for (const DVec2& p : f.screen) {
+                y_min = std::min(y_min, p.y);
+                y_max = std::max(y_max, p.y);
+            }
+            f.first_row = std::max(0, static_cast<int>(std::ceil(y_min - 0.5)));
+            f.last_row = std::min(camera.height - 1, static_cast<int>(std::floor(y_max - 0.5)));
+            if (f.first_row <= f.last_row)
+                faces.push_back(std::move(f));
+        }
+    // The polygon table: faces sorted by their first scanline.
+    std::vector<uint32_t> table(faces.size());
+    for (uint32_t i = 0; i < table.size(); ++i)
+        table[i] = i;
+    std::stable_sort(table.begin(), table.end(), [&](uint32_t a, uint32_t b) {
+        return faces[a].first_row < faces[b].first_row;
+    });
+
+    // Shadow pairs per face, found the first time the face is seen.
+    std::vector<std::optional<std::vector<std::vector<HalfPlane>>>> pairs(faces.size());
+    std::vector<std::optional<Receiver>> receivers(faces.size());
+    const auto shadow_pairs = [&](uint32_t f) -> const std::vector<std::vector<HalfPlane>>& {
+        if (!pairs[f]) {
+            receivers[f] = make_receiver(faces[f].vertices, light);
+            std::vector<std::vector<HalfPlane>> list;
+            const LightView view = light_view(faces[f].vertices, light);
+            if (receivers[f]->faces_light)
+                for (const PolygonOccluder& o : occluders) {
+                    if ((int32_t(o.shape) == faces[f].shape &&
+                         int32_t(o.primitive) == faces[f].primitive) ||
+                        !may_overlap(view, o.view, light))
+                        continue;
+                    std::vector<HalfPlane> edges = shadow_on_plane(o, *receivers[f], light);
+                    if (!edges.empty())
+                        list.push_back(std::move(edges));
+                }
+            image.shadow_pairs += list.size();
+            pairs[f] = std::move(list);
+        }
+        return *pairs[f];
+    };
+
+    std::vector<uint32_t> active;
+    size_t next = 0;
+    std::vector<double> depth(camera.width);
+    std::vector<int64_t> winner(camera.width);
+    for (int row = 0; row < camera.height; ++row) {
+        // The active polygon list: add the faces starting here, drop the finished ones.
+        while (next < table.size() && faces[table[next]].first_row <= row)
+            active.push_back(table[next++]);
+        active.erase(std::remove_if(active.begin(), active.end(),
+                                    [&](uint32_t f) { return faces[f].last_row < row; }),
+                     active.end());
+        std::fill(depth.begin(), depth.end(), std::numeric_limits<double>::infinity());
+        std::fill(winner.begin(), winner.end(), -1);
+        const double y = row + 0.5;
+        for (uint32_t f : active) {
+            const auto extent = row_extent(faces[f].screen, y);
+            if (!extent)
+                continue;
+            const int x0 = std::max(0, static_cast<int>(std::ceil(extent->first - 0.5)));
+            const int x1 =
+                std::min(camera.width - 1, static_cast<int>(std::floor(extent->second - 0.5)));
+            const Face& face = faces[f];
+            const double h = glm::dot(face.normal, face.vertices[0] - cam.eye);
+            for (int x = x0; x <= x1; ++x) {
+                const double t = h / glm::dot(face.normal, cam.direction(x + 0.5, y));
+                if (t > 0.0 && t < depth[x]) {
+                    depth[x] = t;
+                    winner[x] = f;
+                }
+            }
+        }
+        // Spans: runs of pixels won by one face.
+        for (int x = 0; x < camera.width;) {
+            const int64_t f = winner[x];
+            int end = x + 1;
+            while (end < camera.width && winner[end] == f)
+                ++end;
+            if (f >= 0) {
+                const Face& face = faces[f];
+                ++image.spans;
+                const auto& list = shadow_pairs(static_cast<uint32_t>(f));
+                const Receiver& r = *receivers[f];
+                // The eye on the other side of the face than the light: self-shadowed.
+                const bool away = glm::dot(r.frame.normal, cam.eye - r.frame.origin) <= 0.0;
+                const DVec3 d0 = cam.direction(0.0, y), d1 = cam.direction(1.0, y) - d0;
+                const double h = glm::dot(r.frame.normal, r.frame.origin - cam.eye);
+                for (int k = x; k < end; ++k) {
+                    const size_t p = size_t(row) * camera.width + k;
+                    image.shape[p] = face.shape;
+                    image.primitive[p] = face.primitive;
+                    image.shadowed[p] = !r.faces_light || away ? 1 : 0;
+                }
+                if (r.faces_light && !away) {
+                    for (const std::vector<HalfPlane>& edges : list) {
+                        // Each edge line f(P) = m·P + c >= 0 on the plane; along the row
+                        // P(X) = eye + h d(X) / (n·d(X)), and n·d(X) has the sign of h for
+                        // points in front of the eye, so f >= 0 iff
+                        // sign(h) ((m·eye + c) n·d(X) + h m·d(X)) >= 0: linear in X.
+                        double lo = x + 0.5, hi = end - 0.5;
+                        for (const HalfPlane& e : edges) {
+                            const DVec3 m = e.normal.x * r.frame.e_u + e.normal.y * r.frame.e_v;
+                            const double c = e.offset - glm::dot(m, r.frame.origin);
+                            const double at_eye = glm::dot(m, cam.eye) + c;
+                            const double sign = h < 0.0 ? -1.0 : 1.0;
+                            const SpanLine line{sign * (at_eye * glm::dot(r.frame.normal, d0) +
+                                                        h * glm::dot(m, d0)),
+                                                sign * (at_eye * glm::dot(r.frame.normal, d1) +
+                                                        h * glm::dot(m, d1))};
+                            if (line.beta > 0.0)
+                                lo = std::max(lo, -line.alpha / line.beta);
+                            else if (line.beta < 0.0)
+                                hi = std::min(hi, -line.alpha / line.beta);
+                            else if (line.alpha < 0.0)
+                                hi = -std::numeric_limits<double>::infinity();
+                            if (!(lo <= hi))
+                                break;
+                        }
+                        if (!(lo <= hi))
+                            continue;
+                        // Pixels whose centre X = k + 0.5 lies in [lo, hi].
+                        const int k0 = std::max(x, static_cast<int>(std::ceil(lo - 0.5)));
+                        const int k1 = std::min(end - 1, static_cast<int>(std::floor(hi - 0.5)));
+                        for (int k = k0; k <= k1; ++k)
+                            image.shadowed[size_t(row) * camera.width + k] = 1;
+                    }
+                }
+            }
+            x = end;
+        }
+    }
+    return image;
+}
+
+}  // namespace kasumi
