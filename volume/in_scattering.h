@@ -59,7 +59,7 @@ struct VolumeSettings {
     /// integrated exactly over the lit parts; volume/shadow_intervals.h): deterministic,
     /// biased as bounded there. 0: stratified shadow-ray samples (unbiased).
     int shadow_intervals = 0;
-    GuidingSettings guiding;  ///< volume path guiding of multiple scattering (off by default)
+    GuidingSettings guiding{};  ///< volume path guiding of multiple scattering (off by default)
 };
 
 struct VolumeResult {
