@@ -130,10 +130,11 @@ def tests_key(mutant):
 
 
 def run_tests(build, tests, env, log_path, timeout):
-    """0: every test passed; 1: a test failed (or crashed, or timed out); None: a test
+    """0: every test passed; (1, first failed case): a test failed (or crashed, or timed
+    out); None: a test
     executable is missing or its filter selects no test. Each entry names a GoogleTest
     executable (`exe`, relative to the build directory) and a `filter` (--gtest_filter)."""
-    failed = False
+    failed, killer = False, ""
     for t in tests:
         exe = os.path.join(build, t["exe"])
         if not os.path.isfile(exe):
@@ -151,9 +152,12 @@ def run_tests(build, tests, env, log_path, timeout):
                 out.write(f"the filter {t.get('filter')} selects no test\n")
             return None
         if rc != 0:
-            failed = True  # fails, crashes or times out: the mutant is caught
+            # Fails, crashes or times out: the mutant is caught. Name the first failed case.
+            failed = True
+            first = re.search(r"^\[  FAILED  \] (\S+)", output, re.MULTILINE)
+            killer = first.group(1) if first else f"{os.path.basename(exe)} (exit {rc})"
             break
-    return 1 if failed else 0
+    return (1, killer) if failed else 0
 
 
 def main():
@@ -201,7 +205,10 @@ def main():
 
     start = time.monotonic()
     scratch = os.path.abspath(args.scratch or os.path.join(source, "build", "mutants"))
-    tree, build = os.path.join(scratch, "src"), os.path.join(scratch, "build")
+    # The build directory sits where the ci preset puts it (SOURCE/build/ci), so compile
+    # commands carry the same relative paths and ccache (CCACHE_BASEDIR) shares its objects.
+    tree = os.path.join(scratch, "src")
+    build = os.path.join(tree, "build", "ci")
     logs = os.path.join(scratch, "logs")
     os.makedirs(tree, exist_ok=True)
     os.makedirs(logs, exist_ok=True)
@@ -263,8 +270,10 @@ def main():
                     result = run_tests(build, m["tests"], env, log_path, args.timeout)
                     if result is None:
                         status, note = "error", "a test is missing"
+                    elif result == 0:
+                        status = "survived"
                     else:
-                        status = "killed" if result == 1 else "survived"
+                        status, note = "killed", "by " + result[1]
             finally:
                 restore(originals)
         seconds = time.monotonic() - t0
