@@ -155,7 +155,7 @@ def run_tests(build, tests, env, log_path, timeout):
             # Fails, crashes or times out: the mutant is caught. Name the first failed case.
             failed = True
             first = re.search(r"^\[  FAILED  \] (\S+)", output, re.MULTILINE)
-            killer = first.group(1) if first else f"{os.path.basename(exe)} (exit {rc})"
+            killer = first.group(1).rstrip(",") if first else f"{os.path.basename(exe)} (exit {rc})"
             break
     return (1, killer) if failed else 0
 
