@@ -250,14 +250,17 @@ fi
 
 # An array past the cluster's MaxArraySize (100 here, 1001 by default) is refused before sbatch,
 # naming the chunk size that fits; nothing is submitted.
-queued="$(squeue -h | wc -l)"
+# The newest job id slurmctld knows (finished jobs stay listed for MinJobAge, 300 s): a count of
+# queued jobs would also change when earlier scenarios' cancelled jobs leave the queue.
+newest_job() { scontrol -o show jobs 2>/dev/null | grep -o '^JobId=[0-9]*' | cut -d= -f2 | sort -n | tail -1; }
+newest_before="$(newest_job)"
 out="$(SBATCH_ARGS="$base_sbatch" bash "$slurm/submit_sequence.sh" "$scene" 0-239 \
   "$work/big/s.####.exr" 2>&1)"
 rc=$?
 if [ "$rc" -ne 2 ] || ! grep -q "MaxArraySize 100 .*FRAMES_PER_TASK=3 or more" <<<"$out"; then
   fail "array 0-239 with MaxArraySize 100: exit $rc: $out"
 fi
-[ "$(squeue -h | wc -l)" -eq "$queued" ] || fail "a refused array submitted jobs"
+[ "$(newest_job)" = "$newest_before" ] || fail "a refused array submitted jobs (newest job $(newest_job), was $newest_before)"
 
 # The warning before the time limit (submitted first, above).
 frames_job="$signal_job" sheet_job="$signal_sheet" dir="$work/signal"
