@@ -2,8 +2,9 @@
 // tracing: prints one JSON object with the scanline pass's time (median of `runs`, visibility
 // and shadow spans together), the time of the same image by camera rays and one shadow ray per
 // visible point, and the fraction of the pixels seeing a light-facing polygon whose lit/unlit
-// state differs (the scanline method has no render path yet, so this compares visibility, not
-// luminance). Light 0 must be a point, spot, goniometric or directional light.
+// state differs (the pass alone, without spheres and without shading; the render mode
+// "shadows": "scanline" is timed by bench/shadow_study.sh). Light 0 must be a point, spot,
+// goniometric or directional light.
 // Usage: scanline_shadow_bench SCENE.json WxH [runs] [/json/pointer=VALUE]...
 #include "core/camera.h"
 #include "scene/scene_loader.h"

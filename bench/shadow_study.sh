@@ -15,10 +15,9 @@
 # 2048² shadow map, each at three image sizes, with the
 # shadow stage's build time (from `render -v`: build/object-space, build/shadow-volumes,
 # build/shadow-maps) and the render time per pixel, and the error against ray tracing at the
-# same size. The scanline method (POLYGON_METHODS "scanline") has no render path yet: its row
-# comes from bench/scanline_shadow_bench (the whole scanline pass, visibility and shadow spans,
-# in the build column; that time per pixel in the render column; the fraction of light-facing
-# visible pixels whose lit/unlit state differs from a shadow ray; no RMSE: nothing is shaded).
+# same size. The scanline method ("shadows": "scanline", build/scanline: the pass) answers camera
+# hits at pixel centres only, so its row renders with film.jitter false and is compared with a
+# ray-traced render without jitter (rendered for it, not timed in the table).
 #
 # Usage: bench/shadow_study.sh [BUILD_DIR]   (default build/release; needs targets kasumi and
 #        shadow_compare).  Environment: RUNS (default 3), THREADS (default 2), OUT (scratch dir),
@@ -32,7 +31,6 @@ cd "$(dirname "$0")/.."
 BUILD=${1:-build/release}
 KASUMI=$BUILD/apps/kasumi
 COMPARE=$BUILD/bench/shadow_compare
-SCANLINE=$BUILD/bench/scanline_shadow_bench
 RUNS=${RUNS:-3}
 THREADS=${THREADS:-2}
 OUT=${OUT:-$(mktemp -d /tmp/kasumi_shadow_study.XXXXXX)}
@@ -96,7 +94,7 @@ timed() {
         local stats
         stats=$("$KASUMI" render "$scene" -o "$OUT/$name.exr" --no-preview --threads "$THREADS" -v \
             "${EXTRA_ARGS[@]}" "$@" 2>&1)
-        builds+=("$(awk '$1 == "time" && $2 ~ /^build\/(shadow-maps|shadow-volumes|object-space)$/ \
+        builds+=("$(awk '$1 == "time" && $2 ~ /^build\/(shadow-maps|shadow-volumes|object-space|scanline)$/ \
             {s += $3} END {printf "%.2f", 1000 * s}' <<< "$stats")")
         per_pixel+=("$(awk '$1 == "time" && $2 == "render" {t = $3}
             $1 == "camera" && $2 == "rays" {n = $3} END {printf "%.0f", 1e9 * t / n}' <<< "$stats")")
@@ -118,26 +116,24 @@ polygons() {
             [[ $light == directional ]] && light_sets=(--set "/lights/0=$sun")
             for size in $POLYGON_SIZES; do
                 for method in $POLYGON_METHODS; do
-                    if [[ $method == scanline ]]; then
-                        local args=() json
-                        [[ $light == directional ]] && args=("/lights/0=$sun")
-                        json=$("$SCANLINE" "data/scenes/$scene.json" "$size" "$RUNS" "${args[@]}")
-                        awk -v scene="$scene" -v light="$light" -v size="$size" '{
-                            match($0, /"pixels": [0-9.e+-]+/); n = substr($0, RSTART + 10, RLENGTH - 10)
-                            match($0, /"scanline_s": [0-9.e+-]+/); t = substr($0, RSTART + 14, RLENGTH - 14)
-                            match($0, /"differ_fraction": [0-9.e+-]+/); d = substr($0, RSTART + 19, RLENGTH - 19)
-                            printf "| %s | %s | scanline | %s | %.2f | %.0f | %s | - |\n", scene, light, size, 1000 * t, 1e9 * t / n, d
-                        }' <<< "$json"
-                        continue
-                    fi
                     local sets=(--res "$size" "${light_sets[@]}" --set "/lights/0/shadows=\"$method\"")
                     [[ $method == map ]] && sets+=(--set '/lights/0/shadow_map={"resolution": 2048}')
                     local name="poly_${scene}_${light}_${size}_${method}" build per_pixel error
+                    local reference="poly_${scene}_${light}_${size}_ray"
+                    if [[ $method == scanline ]]; then
+                        # The pass answers camera hits at pixel centres only: both renders
+                        # without jitter, the scanline one against a ray-traced one like it.
+                        sets+=(--set /film/jitter=false)
+                        reference="${name}_ray_centres"
+                        timed "$reference" "data/scenes/$scene.json" --res "$size" \
+                            "${light_sets[@]}" --set '/lights/0/shadows="ray"' \
+                            --set /film/jitter=false > /dev/null
+                    fi
                     read -r build per_pixel <<< "$(timed "$name" "data/scenes/$scene.json" "${sets[@]}")"
                     if [[ $method == ray ]]; then
                         error="0 | 0"
                     else
-                        error=$(compare "poly_${scene}_${light}_${size}_ray" "$name")
+                        error=$(compare "$reference" "$name")
                     fi
                     echo "| $scene | $light | $method | $size | $build | $per_pixel | $error |"
                 done

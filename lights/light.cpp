@@ -33,7 +33,7 @@ bool is_delta(const Light& light) {
 
 bool shadows_by_stage(ShadowMode mode) {
     return mode == ShadowMode::Map || mode == ShadowMode::ShadowVolume ||
-           mode == ShadowMode::ObjectSpace;
+           mode == ShadowMode::ObjectSpace || mode == ShadowMode::Scanline;
 }
 
 IncidentLight incident_light(const Light& light, const Vec3& p) {

@@ -37,6 +37,7 @@ enum class ShadowMode {
     Map,           ///< depth maps rendered from the light once per render (surface/shadows/)
     ShadowVolume,  ///< Crow's shadow volumes of the meshes, point-like and directional lights
     ObjectSpace,   ///< lit and shadowed detail polygons per face (Atherton et al. 1978)
+    Scanline,      ///< shadowed sub-spans of a scanline pass at the camera's pixel centres
 };
 
 /// True when a stage built before the first pixel decides the light's visibility (maps, shadow

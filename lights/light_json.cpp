@@ -166,19 +166,21 @@ void parse_shadow_settings(JsonObjectReader& reader, Light& light) {
             light.shadows = ShadowMode::None;
         } else if (mode == "map") {
             light.shadows = ShadowMode::Map;
-        } else if (mode == "shadow-volume" || mode == "object-space") {
+        } else if (mode == "shadow-volume" || mode == "object-space" || mode == "scanline") {
             // Polygons projected from one centre: a point (Crow 1977; Atherton, Weiler &
-            // Greenberg 1978) or the point at infinity of a parallel light.
+            // Greenberg 1978; Bouknight & Kelley 1970) or the point at infinity of a parallel
+            // light.
             if (!is_delta(light))
                 s->fail("\"" + mode +
                         "\" shadows need a point, spot, goniometric or directional light (a " +
                         light_type_name(light) + " light has no single centre of projection)");
-            light.shadows =
-                mode == "shadow-volume" ? ShadowMode::ShadowVolume : ShadowMode::ObjectSpace;
+            light.shadows = mode == "shadow-volume"  ? ShadowMode::ShadowVolume
+                            : mode == "object-space" ? ShadowMode::ObjectSpace
+                                                     : ShadowMode::Scanline;
         } else {
             s->fail(
                 "unknown shadow mode (expected \"ray\", \"none\", \"map\", "
-                "\"shadow-volume\" or \"object-space\")");
+                "\"shadow-volume\", \"object-space\" or \"scanline\")");
         }
     }
     if (const auto m = reader.optional("shadow_map")) {

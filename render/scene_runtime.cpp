@@ -37,6 +37,10 @@ float SceneRuntime::staged_visibility(size_t light, const SurfaceHit& hit, const
         if (const ObjectSpaceShadows* shadows = m_object_space->shadows(light))
             return shadows->in_shadow(hit, origin) ? 0.0f : 1.0f;
     }
+    if (m_scanline != nullptr) {
+        if (const ScanlineShadows* shadows = m_scanline->shadows(light))
+            return shadows->in_shadow(hit, origin) ? 0.0f : 1.0f;
+    }
     return 1.0f;
 }
 
@@ -77,6 +81,13 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
         m_object_space =
             std::make_unique<ObjectSpaceShadowSet>(m_desc.shapes, m_desc.lights, *m_surfaces);
         m_build_times.object_space_s = since(start);
+    }
+    if (m_plan.scanline_shadows) {
+        const auto start = Clock::now();
+        m_scanline =
+            std::make_unique<ScanlineShadowSet>(m_desc.shapes, m_desc.lights, m_desc.camera,
+                                                m_desc.film.width, m_desc.film.height, *m_surfaces);
+        m_build_times.scanline_s = since(start);
     }
     if (m_plan.volume) {
         const auto start = Clock::now();

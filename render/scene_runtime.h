@@ -7,6 +7,7 @@
 #include "scene/plan.h"
 #include "scene/scene.h"
 #include "sky/sky_renderer.h"
+#include "surface/scanline/scanline_shadow_set.h"
 #include "surface/shadows/object_space_shadows.h"
 #include "surface/shadows/shadow_map.h"
 #include "surface/shadows/shadow_volume.h"
@@ -35,6 +36,7 @@ struct BuildTimes {
     double shadow_maps_s = -1.0;     ///< depth maps rendered from the lights
     double shadow_volumes_s = -1.0;  ///< silhouettes extruded into volumes
     double object_space_s = -1.0;    ///< detail polygons clipped from the lights (or reused)
+    double scanline_s = -1.0;        ///< scanline passes (visibility and shadowed sub-spans)
     double media_s = -1.0;           ///< the media set (majorants, overlaps)
     double sky_s = -1.0;             ///< the sky's tables (all, or the sun-dependent ones)
     double gi_s = -1.0;              ///< radiosity solve or photon maps
@@ -67,8 +69,8 @@ class SceneRuntime {
     /// Visibility in [0, 1] of `light_point` (the light's position, or a sampled point on it)
     /// of light `light` from the surface point p (unit geometric normal n; `origin` is p offset
     /// off the surface toward the light; `wo` points toward the viewer) by the light's shadow
-    /// maps, shadow volumes or detail polygons (the point is `hit`'s position, on its face);
-    /// 1 for lights with other shadow modes.
+    /// maps, shadow volumes, detail polygons or scanline pass (the point is `hit`'s position,
+    /// on its face); 1 for lights with other shadow modes.
     float staged_visibility(size_t light, const SurfaceHit& hit, const Vec3& n, const Vec3& origin,
                             const Vec3& light_point, const Vec3& wo) const;
     /// Null unless the plan has shadow maps (built once, with the runtime).
@@ -77,6 +79,8 @@ class SceneRuntime {
     const ShadowVolumeSet* shadow_volumes() const { return m_shadow_volumes.get(); }
     /// Null unless the plan has object-space shadows.
     const ObjectSpaceShadowSet* object_space_shadows() const { return m_object_space.get(); }
+    /// Null unless the plan has scanline shadows.
+    const ScanlineShadowSet* scanline_shadows() const { return m_scanline.get(); }
     /// The render.gi method and its precomputation (render/gi_method.h); null for "none".
     const GiMethod* gi() const { return m_gi.get(); }
     /// Time spent building each part in the constructor.
@@ -91,6 +95,7 @@ class SceneRuntime {
     std::unique_ptr<ShadowMapSet> m_shadow_maps;
     std::unique_ptr<ShadowVolumeSet> m_shadow_volumes;
     std::unique_ptr<ObjectSpaceShadowSet> m_object_space;
+    std::unique_ptr<ScanlineShadowSet> m_scanline;
     MediumSet m_media;
     std::unique_ptr<SkyRenderer> m_sky;
     std::shared_ptr<const GiMethod> m_gi;

@@ -74,8 +74,8 @@ void add_stage_parts(StageTimes& times, const SceneRuntime& runtime) {
           std::make_pair("build/shadow-maps", b.shadow_maps_s),
           std::make_pair("build/shadow-volumes", b.shadow_volumes_s),
           std::make_pair("build/object-space", b.object_space_s),
-          std::make_pair("build/media", b.media_s), std::make_pair("build/sky", b.sky_s),
-          std::make_pair("build/gi", b.gi_s)}) {
+          std::make_pair("build/scanline", b.scanline_s), std::make_pair("build/media", b.media_s),
+          std::make_pair("build/sky", b.sky_s), std::make_pair("build/gi", b.gi_s)}) {
         if (seconds >= 0.0)
             times.parts.emplace_back(name, seconds);
     }

@@ -97,7 +97,7 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
     const bool shadows_on = !scene.shapes.empty() && scene.render.shadows;
     const char* why_off =
         scene.shapes.empty() ? "no shapes can cast shadows" : "render.shadows is false";
-    std::vector<std::string> soft, maps, volumes, object_space;
+    std::vector<std::string> soft, maps, volumes, object_space, scanline;
     for (const Light& light : scene.lights) {
         if (!is_delta(light) && light.shadows == ShadowMode::Ray)
             soft.push_back(light.name + ": " + std::to_string(light.samples) + " shadow rays" +
@@ -120,6 +120,8 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
             volumes.push_back(light.name);
         if (light.shadows == ShadowMode::ObjectSpace)
             object_space.push_back(light.name);
+        if (light.shadows == ShadowMode::Scanline)
+            scanline.push_back(light.name);
     }
     plan.stages.push_back(
         {"soft-shadows", shadows_on && !soft.empty(),
@@ -157,6 +159,24 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
                "point, no shadow ray (spheres are not tessellated: they receive and cast by "
                "shadow rays): " +
                    join(object_space)});
+    plan.scanline_shadows = shadows_on && !scanline.empty();
+    plan.stages.push_back(
+        {"scanline-shadows", plan.scanline_shadows,
+         !shadows_on ? why_off
+         : scanline.empty()
+             ? "no light has \"shadows\": \"scanline\""
+             : std::string("one scanline pass per light at ") + std::to_string(scene.film.width) +
+                   "x" + std::to_string(scene.film.height) +
+                   " through the pixel centres (spans, depth along the scanline, the faces "
+                   "between each visible span and the light projected onto its plane: shadowed "
+                   "sub-spans, Bouknight & Kelley 1970); a camera hit at a pixel centre on the "
+                   "pass's visible face takes its answer (plus shadow rays against spheres); "
+                   "shadow rays for the rest: " +
+                   (scene.film.jitter ? "jittered camera samples (film.jitter is on: nearly "
+                                        "every sample), "
+                                      : "") +
+                   "secondary rays (reflection, refraction, GI, media), points on spheres: " +
+                   join(scanline)});
     bool specular = false;
     for (const Shape& shape : scene.shapes) {
         const Material& m = scene.materials[shape.material];

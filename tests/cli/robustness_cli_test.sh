@@ -181,6 +181,7 @@ chk "/camera/up = \[0,0,0\]: must be a non-zero vector" --set '/camera/up=[0,0,0
 chk "/lights/0/direction = \[0,0,0\]: must be a non-zero vector" --set '/lights/0/direction=[0,0,0]'
 chk "/lights/2/falloff_deg = 40: must be in \[0, cone_deg\]" --set /lights/2/falloff_deg=40
 chk "/lights/1/shadows = \"soft\": unknown shadow mode" --set '/lights/1/shadows="soft"'
+chk "/lights/4/shadows = \"scanline\": \"scanline\" shadows need a point, spot, goniometric or directional light" --set '/lights/4/shadows="scanline"'
 chk "/materials/glass/ior = 0: must be > 0" --set /materials/glass/ior=0
 chk "/render/volume/step_m = 0: must be > 0" --set /render/volume/step_m=0
 chk "/render/threads = -1: must be an integer in \[0, 1024\]" --set /render/threads=-1

@@ -116,6 +116,10 @@ TEST(LightJson, BadExtendedLightsAreLocated) {
         "shadows": "shadow-volume"})",
         "/lights/0/shadows = \"shadow-volume\": \"shadow-volume\" shadows need a point, spot, "
         "goniometric or directional light");
+    has(R"({"type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+        "luminance_cd_m2": 1, "shadows": "scanline"})",
+        "/lights/0/shadows = \"scanline\": \"scanline\" shadows need a point, spot, "
+        "goniometric or directional light");
     has(R"({"type": "point", "position": [0, 0, 0], "intensity_cd": 1,
         "shadow_map": {"resolution": 512}})",
         "/lights/0/shadow_map = {\"resolution\":512}: shadow_map applies to lights with");

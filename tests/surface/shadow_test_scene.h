@@ -136,14 +136,16 @@ inline std::vector<Shape> hard_case_scene() {
     return shapes;
 }
 
-/// A w × h pinhole image from `eye` toward `target`, 0.8 wide per unit distance on each side.
+/// A w × h pinhole image from `eye` toward `target`, half_width (0.8 unless set: kasumi's
+/// Camera has aspect · tan(fov/2)) wide per unit distance on each side.
 struct PinholeView {
     Vec3 eye, forward, right, up;
     int w = 0, h = 0;
+    float half_width = 0.8f;
     /// Unit direction through the image point (x, y), in pixels from the top left corner.
     Vec3 direction(float x, float y) const {
-        const float sx = (2.0f * x / w - 1.0f) * 0.8f;
-        const float sy = (1.0f - 2.0f * y / h) * 0.8f * h / w;
+        const float sx = (2.0f * x / w - 1.0f) * half_width;
+        const float sy = (1.0f - 2.0f * y / h) * half_width * h / w;
         return glm::normalize(forward + sx * right + sy * up);
     }
 };
