@@ -247,6 +247,25 @@ PlanStage adaptive_sampling_plan_stage(const FilmDesc& film) {
 
 }  // namespace
 
+namespace {
+
+/// How the path tracer samples free flights (render.volume.spectral_mis, used only for
+/// chromatic, non-emitting media; volume/scattered_paths.cpp).
+std::string flight_summary(const SceneDesc& scene) {
+    const std::string tracking = "spectral (delta) tracking";
+    if (!scene.render.volume.spectral_mis)
+        return tracking;
+    const MediumSet media(scene.media);
+    if (media.grey_extinction())
+        return tracking + " (spectral_mis: extinction is grey)";
+    if (media.emits())
+        return tracking + " (spectral_mis: media emit)";
+    return "spectral MIS (Miller, Georgiev & Jarosz 2019; one-sample balance heuristic over "
+           "hero channels)";
+}
+
+}  // namespace
+
 Plan make_plan(const SceneDesc& scene) {
     Plan plan;
     const bool has_shapes = !scene.shapes.empty();
@@ -314,9 +333,9 @@ Plan make_plan(const SceneDesc& scene) {
          : volume.estimator == Estimator::March && !multiple
              ? "single scattering, fixed-step march (" + std::to_string(volume.step_m) +
                    " m or step_voxels), light to every node through the march"
-             : std::string(multiple ? "paths" : "single scattering") +
-                   ": free flights by spectral (delta) tracking over per-brick majorants, "
-                   "next-event estimation to every light through " +
+             : std::string(multiple ? "paths" : "single scattering") + ": free flights by " +
+                   flight_summary(scene) +
+                   " over per-brick majorants, next-event estimation to every light through " +
                    estimator_name(volume.estimator) +
                    (plan.shadow_rays ? ", shadowed by surfaces" : "")});
 

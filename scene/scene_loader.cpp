@@ -146,6 +146,8 @@ RenderSettings parse_render(const JsonNode& node) {
             render.volume.shadow_intervals = parse_int_in(*intervals, 0, 4096);
         if (auto roulette = volume.optional("nee_roulette"))
             render.volume.nee_roulette = roulette->as_bool();
+        if (auto mis = volume.optional("spectral_mis"))
+            render.volume.spectral_mis = mis->as_bool();
         if (auto sampling = volume.optional("light_sampling"))
             render.volume.light_sampling = parse_choice<LightSampling>(
                 *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});

@@ -59,6 +59,10 @@ struct VolumeSettings {
     /// integrated exactly over the lit parts; volume/shadow_intervals.h): deterministic,
     /// biased as bounded there. 0: stratified shadow-ray samples (unbiased).
     int shadow_intervals = 0;
+    /// Chromatic media (sigma_t differing per channel): the path tracer's free flights by
+    /// spectral MIS (volume/spectral_mis_flight.h; Miller, Georgiev & Jarosz 2019) instead of
+    /// spectral tracking. Unbiased either way; grey or emitting media keep spectral tracking.
+    bool spectral_mis = false;
     GuidingSettings guiding{};  ///< volume path guiding of multiple scattering (off by default)
 };
 

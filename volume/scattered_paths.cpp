@@ -2,6 +2,7 @@
 
 #include "volume/guiding/guided_scattering.h"
 #include "volume/scattered_direct.h"
+#include "volume/spectral_mis_flight.h"
 #include "volume/transmittance.h"
 
 #include <cmath>
@@ -48,6 +49,15 @@ bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask,
     return true;
 }
 
+/// A free flight by spectral MIS where render.volume.spectral_mis asks for it and the media are
+/// chromatic, else by spectral tracking: the same contract (FreeFlight), both unbiased.
+FreeFlight free_flight(const MediumSet& media, const Ray& ray, const Rgb& throughput,
+                       const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters) {
+    if (settings.spectral_mis && !media.grey_extinction())
+        return sample_free_flight_spectral_mis(media, ray, throughput, rng, counters);
+    return sample_free_flight(media, ray, throughput, rng, counters);
+}
+
 float mean(const Rgb& c) {
     return (c.r + c.g + c.b) * (1.0f / 3.0f);
 }
@@ -66,7 +76,7 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
     };
     Ray ray = camera_segment;
     for (int depth = 0;;) {
-        const FreeFlight flight = sample_free_flight(media, ray, throughput, rng, counters);
+        const FreeFlight flight = free_flight(media, ray, throughput, settings, rng, counters);
         gather(flight.emitted);
         throughput *= flight.weight;
         if (depth == 0 && first_escape != nullptr)
@@ -159,7 +169,7 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
             Ray rest = ray;
             rest.t_min = walk.stopped_at;
             const FreeFlight flight =
-                sample_free_flight(media, rest, throughput * flight_weight, rng, counters);
+                free_flight(media, rest, throughput * flight_weight, settings, rng, counters);
             flight_weight *= flight.weight;
             scattered = flight.scattered;
             position = flight.position;
