@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "tests/render/quiet_render_options.h"
 #include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
@@ -16,13 +17,6 @@
 
 namespace kasumi {
 namespace {
-
-RenderOptions quiet(int threads) {
-    RenderOptions o;
-    o.threads = threads;
-    o.progress = false;
-    return o;
-}
 
 /// The mean over `pixels` independent pixels of an estimate of E[X] = 1 (X exponential: relative
 /// standard deviation 1), each pixel sampling until `stop` says so; its standard error.

@@ -2,19 +2,13 @@
 // images are deterministic across thread counts, and never hold a non-finite value.
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "tests/render/quiet_render_options.h"
 #include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
 
 namespace kasumi {
 namespace {
-
-RenderOptions quiet(int threads) {
-    RenderOptions o;
-    o.threads = threads;
-    o.progress = false;
-    return o;
-}
 
 TEST(Plan, SceneWithoutMediaRunsNoVolumeStage) {
     const auto scene = runtime_from_text(R"({

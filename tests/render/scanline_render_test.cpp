@@ -5,6 +5,7 @@
 // scene built in code (point and parallel light) and on data/scenes/shadow_polygons_concave.json.
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "tests/render/quiet_render_options.h"
 #include "tests/surface/shadow_test_scene.h"
 #include "tests/test_scene.h"
 
@@ -14,13 +15,6 @@
 
 namespace kasumi {
 namespace {
-
-RenderOptions quiet(int threads) {
-    RenderOptions o;
-    o.threads = threads;
-    o.progress = false;
-    return o;
-}
 
 Image render_with(SceneDesc desc, ShadowMode mode, int threads) {
     desc.lights[0].shadows = mode;

@@ -3,18 +3,12 @@
 #include "render/renderer.h"
 #include "scene/plan.h"
 #include "scene/scene_loader.h"
+#include "tests/render/quiet_render_options.h"
 
 #include <gtest/gtest.h>
 
 namespace kasumi {
 namespace {
-
-RenderOptions quiet(int threads) {
-    RenderOptions o;
-    o.threads = threads;
-    o.progress = false;
-    return o;
-}
 
 /// fog_street.json (chromatic fog: sigma_s 0.05, 0.052, 0.055 /m) by multiple scattering with
 /// ratio tracking, small.

@@ -4,6 +4,7 @@
 #include "render/guiding_training.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
+#include "tests/render/quiet_render_options.h"
 #include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
@@ -12,13 +13,6 @@
 
 namespace kasumi {
 namespace {
-
-RenderOptions quiet(int threads) {
-    RenderOptions o;
-    o.threads = threads;
-    o.progress = false;
-    return o;
-}
 
 /// cloud.json (multiple scattering through a VDB cloud) at 48x27, guided or not.
 SceneDesc small_cloud(int spp, int seed, bool guided) {
