@@ -17,20 +17,41 @@ std::string executable_dir() {
     return ec ? std::string() : exe.parent_path().string();
 }
 
+/// The directory of the binary holding this code: the executable for the CLI, the extension
+/// module (site-packages/kasumi/_kasumi*.so) when kasumi is imported into Python.
+std::string code_object_dir() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<const void*>(&executable_dir), &info) == 0 ||
+        info.dli_fname == nullptr)
+        return {};
+    std::error_code ec;
+    const std::filesystem::path object = std::filesystem::canonical(info.dli_fname, ec);
+    return ec ? std::string() : object.parent_path().string();
+}
+
 }  // namespace
 
 std::vector<std::string> module_search_paths(const ModuleSpec& spec) {
     if (const char* env = std::getenv(spec.env); env != nullptr && *env != '\0')
         return {env};
     std::vector<std::string> paths;
+    const auto add = [&paths](const std::string& path) {
+        for (const std::string& p : paths)
+            if (p == path)
+                return;
+        paths.push_back(path);
+    };
+    const std::string object_dir = code_object_dir();
+    if (!object_dir.empty())
+        add(object_dir + "/" + spec.file);
     const std::string dir = executable_dir();
     if (!dir.empty()) {
-        paths.push_back(dir + "/" + spec.file);
-        paths.push_back(dir + "/../lib/kasumi/" + spec.file);
+        add(dir + "/" + spec.file);
+        add(dir + "/../lib/kasumi/" + spec.file);
     }
     const std::string built = spec.build_path;
-    if (!built.empty() && (paths.empty() || built != paths.front()))
-        paths.push_back(built);
+    if (!built.empty())
+        add(built);
     return paths;
 }
 

@@ -18,9 +18,11 @@ struct ModuleSpec {
     int abi;                 ///< the ABI version T::abi must equal
 };
 
-/// Where `spec.file` is looked for, in order: $env if set (then only there); the executable's
-/// directory; <executable's directory>/../lib/kasumi (installed); `spec.build_path` (so tests and
-/// benchmarks find it without installing).
+/// Where `spec.file` is looked for, in order: $env if set (then only there); the directory of the
+/// binary holding kasumi's code (the executable, or the Python extension module: the package
+/// installs its modules beside it); the executable's directory; <executable's directory>/../lib/
+/// kasumi (installed CLI); `spec.build_path` (so tests and benchmarks find it without
+/// installing). No path appears twice.
 std::vector<std::string> module_search_paths(const ModuleSpec& spec);
 
 /// Loads the first module found (RTLD_NOW | RTLD_LOCAL; never closed) and returns what its entry
