@@ -1,4 +1,5 @@
 #include "core/color_management.h"
+#include "core/preview_metadata.h"
 
 #include "core/error.h"
 #include "core/png_io.h"
@@ -121,7 +122,8 @@ void apply_display_view(std::vector<float>& rgb, const PreviewSettings& settings
 void write_preview_png(const Image& image, const std::string& png_path,
                        const PreviewSettings& settings) {
     write_png_rgb8(image.width, image.height,
-                   display_rgb8(image, settings, "write_preview_png: " + png_path), png_path);
+                   display_rgb8(image, settings, "write_preview_png: " + png_path), png_path,
+                   preview_png_text(settings));
 }
 
 std::vector<std::string> list_displays(const std::string& config_path) {

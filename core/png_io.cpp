@@ -98,9 +98,29 @@ std::vector<uint8_t> filter_image(int width, int height, const std::vector<uint8
     return filtered;
 }
 
+/// The tEXt keyword rule of PNG spec section 11.3.4.3.
+void check_text(const PngText& entry) {
+    const std::string& k = entry.keyword;
+    bool ok = !k.empty() && k.size() <= 79 && k.front() != ' ' && k.back() != ' ' &&
+              k.find("  ") == std::string::npos;
+    for (const char c : k) {
+        const auto byte = static_cast<unsigned char>(c);
+        ok = ok && ((byte >= 32 && byte <= 126) || byte >= 161);
+    }
+    if (!ok)
+        throw Error(ErrorKind::Runtime, "encode_png_rgb8: \"" + k +
+                                            "\" is not a PNG tEXt keyword (1 to 79 printable "
+                                            "Latin-1 characters, no leading, trailing or double "
+                                            "spaces)");
+    if (entry.text.find('\0') != std::string::npos)
+        throw Error(ErrorKind::Runtime,
+                    "encode_png_rgb8: the text of \"" + k + "\" holds a NUL character");
+}
+
 }  // namespace
 
-std::vector<uint8_t> encode_png_rgb8(int width, int height, const std::vector<uint8_t>& rgb) {
+std::vector<uint8_t> encode_png_rgb8(int width, int height, const std::vector<uint8_t>& rgb,
+                                     const std::vector<PngText>& text) {
     // PNG limits dimensions to 2^31 - 1; zlib's one-shot compress2 takes a uLong size.
     if (width <= 0 || height <= 0)
         throw Error(ErrorKind::Runtime, "encode_png_rgb8: empty image " + std::to_string(width) +
@@ -111,6 +131,8 @@ std::vector<uint8_t> encode_png_rgb8(int width, int height, const std::vector<ui
                                             " bytes for a " + std::to_string(width) + "x" +
                                             std::to_string(height) + " RGB image (expected " +
                                             std::to_string(expected) + ")");
+    for (const PngText& entry : text)
+        check_text(entry);
 
     const std::vector<uint8_t> filtered = filter_image(width, height, rgb);
     uLongf compressed_size = compressBound(static_cast<uLong>(filtered.size()));
@@ -128,14 +150,20 @@ std::vector<uint8_t> encode_png_rgb8(int width, int height, const std::vector<ui
     // Bit depth 8, colour type 2 (truecolour), deflate, adaptive filtering, no interlace.
     ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});
     append_chunk(png, "IHDR", ihdr.data(), ihdr.size());
+    for (const PngText& entry : text) {
+        std::vector<uint8_t> data(entry.keyword.begin(), entry.keyword.end());
+        data.push_back(0);
+        data.insert(data.end(), entry.text.begin(), entry.text.end());
+        append_chunk(png, "tEXt", data.data(), data.size());
+    }
     append_chunk(png, "IDAT", compressed.data(), compressed_size);
     append_chunk(png, "IEND", nullptr, 0);
     return png;
 }
 
-void write_png_rgb8(int width, int height, const std::vector<uint8_t>& rgb,
-                    const std::string& path) {
-    const std::vector<uint8_t> png = encode_png_rgb8(width, height, rgb);
+void write_png_rgb8(int width, int height, const std::vector<uint8_t>& rgb, const std::string& path,
+                    const std::vector<PngText>& text) {
+    const std::vector<uint8_t> png = encode_png_rgb8(width, height, rgb, text);
     write_file_atomic(path, png.data(), png.size());
 }
 

@@ -2,17 +2,12 @@
 
 #include "core/error.h"
 #include "core/exposure_meter.h"
+#include "core/preview_metadata.h"
 
 #include <cstdio>
 #include <filesystem>
 
 namespace kasumi {
-
-std::string exposure_text(float stops) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.9g", static_cast<double>(stops));
-    return text;
-}
 
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
                          uint32_t& aovs, ExrCompression& compression) {

@@ -34,8 +34,6 @@ struct OutputPaths {
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
                          uint32_t& aovs, ExrCompression& compression);
 
-/// `stops` as the kasumi/preview/exposure_stops metadata holds it (shortest exact text).
-std::string exposure_text(float stops);
 
 /// Creates the parent directories of `path`; throws an output error naming the directory.
 void make_parent_dirs(const std::string& path);

@@ -251,6 +251,7 @@ uint32_t read_u32_be(const std::vector<uint8_t>& bytes, size_t at) {
 struct DecodedPng {
     int width = 0, height = 0;
     std::vector<uint8_t> rgb;
+    std::vector<std::pair<std::string, std::string>> text;  ///< tEXt chunks, in file order
 };
 
 /// A minimal independent PNG checker for 8-bit RGB: signature, chunk CRCs, IHDR fields, IDAT
@@ -282,6 +283,12 @@ DecodedPng decode_png_rgb8(const std::vector<uint8_t>& png) {
             EXPECT_EQ(data[12], 0);  // no interlace
         } else if (type == "IDAT") {
             idat.insert(idat.end(), data, data + length);
+        } else if (type == "tEXt") {
+            EXPECT_NE(types.size(), 1u) << "tEXt before IHDR";
+            const uint8_t* nul = std::find(data, data + length, uint8_t{0});
+            EXPECT_NE(nul, data + length) << "tEXt without a NUL separator";
+            if (nul != data + length)
+                out.text.emplace_back(std::string(data, nul), std::string(nul + 1, data + length));
         }
         at += 12 + length;
     }
@@ -352,6 +359,27 @@ TEST(PngIo, WrittenFileDecodesToTheSameBytes) {
     EXPECT_EQ(decoded.width, width);
     EXPECT_EQ(decoded.height, height);
     EXPECT_EQ(decoded.rgb, rgb);
+}
+
+TEST(PngIo, TextChunksFollowTheHeaderAndBadKeywordsAreRefused) {
+    const std::vector<PngText> text = {{"Software", "kasumi"},
+                                       {"kasumi/preview/exposure_stops", "-13.625"}};
+    const DecodedPng png = decode_png_rgb8(encode_png_rgb8(2, 1, {1, 2, 3, 4, 5, 6}, text));
+    EXPECT_EQ(png.rgb, (std::vector<uint8_t>{1, 2, 3, 4, 5, 6}));
+    ASSERT_EQ(png.text.size(), 2u);
+    EXPECT_EQ(png.text[0], (std::pair<std::string, std::string>{"Software", "kasumi"}));
+    EXPECT_EQ(png.text[1].second, "-13.625");
+    for (const std::string& bad : {std::string(), std::string(80, 'k'), std::string(" lead"),
+                                   std::string("two  spaces"), std::string("tab\tin")})
+        EXPECT_EQ(error_kind_of([&] {
+                      encode_png_rgb8(1, 1, {0, 0, 0}, {{bad, "x"}});
+                  }),
+                  ErrorKind::Runtime)
+            << bad;
+    EXPECT_EQ(error_kind_of([] {
+                  encode_png_rgb8(1, 1, {0, 0, 0}, {{"Comment", std::string("a\0b", 3)}});
+              }),
+              ErrorKind::Runtime);
 }
 
 TEST(PngIo, OnePixelImageAndBadArguments) {
@@ -459,6 +487,13 @@ TEST(ColorManagement, PreviewPngQuantisesUnToneMappedGrey) {
     EXPECT_EQ(png.height, 1);
     // 0.18 -> 0.46135 * 255 = 117.6 -> 118; 1 -> 255; above 1 clips to 255, below 0 to 0.
     EXPECT_EQ(png.rgb, (std::vector<uint8_t>{118, 118, 118, 255, 255, 255, 0, 255, 255}));
+    // The PNG says how it was made: the view and the exposure, as the EXR's kasumi/preview/*.
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"Software", "kasumi"},
+        {"kasumi/preview/display", "sRGB"},
+        {"kasumi/preview/view", "Un-tone-mapped"},
+        {"kasumi/preview/exposure_stops", "0"}};
+    EXPECT_EQ(png.text, expected);
 }
 
 TEST(ColorManagement, ErrorsNameTheConfig) {
