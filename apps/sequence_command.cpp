@@ -169,12 +169,16 @@ void run(const Options& o) {
             }
             std::fprintf(stderr, "\nsequence: over the run: %s\n",
                          reuse_text(summary.reuse).c_str());
-            if (summary.meter_renders > 0) {
-                std::fprintf(stderr,
-                             "sequence: auto exposure: %zu meter renders in %.2f s (%.3f s "
-                             "each)\n",
-                             summary.meter_renders, summary.meter_seconds,
-                             summary.meter_seconds / static_cast<double>(summary.meter_renders));
+            if (summary.meter_renders > 0 || summary.stored_meterings > 0) {
+                std::fprintf(
+                    stderr,
+                    "sequence: auto exposure: %zu meter renders in %.2f s (%.3f s "
+                    "each), %zu meterings read from the store; store: %s\n",
+                    summary.meter_renders, summary.meter_seconds,
+                    summary.meter_renders > 0
+                        ? summary.meter_seconds / static_cast<double>(summary.meter_renders)
+                        : 0.0,
+                    summary.stored_meterings, summary.meter_store.c_str());
             }
         }
         if (!summary.contact_sheet.empty()) {

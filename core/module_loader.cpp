@@ -17,19 +17,22 @@ std::string executable_dir() {
     return ec ? std::string() : exe.parent_path().string();
 }
 
-/// The directory of the binary holding this code: the executable for the CLI, the extension
-/// module (site-packages/kasumi/_kasumi*.so) when kasumi is imported into Python.
 std::string code_object_dir() {
+    const std::string object = code_object_path();
+    return object.empty() ? std::string() : std::filesystem::path(object).parent_path().string();
+}
+
+}  // namespace
+
+std::string code_object_path() {
     Dl_info info{};
-    if (dladdr(reinterpret_cast<const void*>(&executable_dir), &info) == 0 ||
+    if (dladdr(reinterpret_cast<const void*>(&code_object_path), &info) == 0 ||
         info.dli_fname == nullptr)
         return {};
     std::error_code ec;
     const std::filesystem::path object = std::filesystem::canonical(info.dli_fname, ec);
-    return ec ? std::string() : object.parent_path().string();
+    return ec ? std::string() : object.string();
 }
-
-}  // namespace
 
 std::vector<std::string> module_search_paths(const ModuleSpec& spec) {
     if (const char* env = std::getenv(spec.env); env != nullptr && *env != '\0')

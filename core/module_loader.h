@@ -18,6 +18,10 @@ struct ModuleSpec {
     int abi;                 ///< the ABI version T::abi must equal
 };
 
+/// The binary holding kasumi's code: the executable for the CLI, the extension module
+/// (site-packages/kasumi/_kasumi*.so) when kasumi is imported into Python; empty if unknown.
+std::string code_object_path();
+
 /// Where `spec.file` is looked for, in order: $env if set (then only there); the directory of the
 /// binary holding kasumi's code (the executable, or the Python extension module: the package
 /// installs its modules beside it); the executable's directory; <executable's directory>/../lib/

@@ -23,12 +23,13 @@ double smoothed_log2_luminance(int64_t frame, const std::function<double(int64_t
 }
 
 AutoExposure::AutoExposure(const SceneSource& source, const std::string& scene_path, bool reuse,
-                           int threads)
+                           int threads, const std::string& store_dir)
     : m_source(source),
       m_scene_path(scene_path),
       m_reuse(reuse),
       m_threads(threads),
-      m_cache(reuse) {}
+      m_cache(reuse),
+      m_store(store_dir) {}
 
 float AutoExposure::exposure_stops(int64_t frame) {
     return metered_exposure_stops(
@@ -43,6 +44,11 @@ double AutoExposure::log2_luminance(int64_t frame) {
     std::string text = doc.dump();
     if (const auto it = m_by_document.find(text); it != m_by_document.end())
         return m_by_frame[frame] = it->second;
+    if (const std::optional<double> stored = m_store.find(text)) {
+        ++m_stored;
+        m_by_document.emplace(std::move(text), *stored);
+        return m_by_frame[frame] = *stored;
+    }
 
     SceneDesc desc = m_source.parse(doc, frame, &m_cache);
     const double aspect =
@@ -65,6 +71,8 @@ double AutoExposure::log2_luminance(int64_t frame) {
                                    static_cast<size_t>(runtime->desc().film.height));
     ++m_renders;
     m_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (std::string problem = m_store.put(text, log2_lum); m_store_problem.empty())
+        m_store_problem = std::move(problem);
     m_by_document.emplace(std::move(text), log2_lum);
     return m_by_frame[frame] = log2_lum;
 }

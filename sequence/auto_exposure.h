@@ -8,6 +8,7 @@
 /// exposure depends only on the scene and its number: the same whatever the chunking of a
 /// Slurm array, whichever frames a task renders, or whether it runs alone (--frame N).
 #include "scene/scene_loader.h"
+#include "sequence/meter_store.h"
 #include "sequence/sequence_cache.h"
 
 #include <cstdint>
@@ -37,8 +38,10 @@ double smoothed_log2_luminance(int64_t frame, const std::function<double(int64_t
 class AutoExposure {
   public:
     /// `source` must outlive this. `reuse`: keep the BVH and sky tables between meter renders;
-    /// `threads`: of the meter renders (0: the scene's render.threads).
-    AutoExposure(const SceneSource& source, const std::string& scene_path, bool reuse, int threads);
+    /// `threads`: of the meter renders (0: the scene's render.threads); `store_dir`: where
+    /// meterings are kept between processes (sequence/meter_store.h; empty: nowhere).
+    AutoExposure(const SceneSource& source, const std::string& scene_path, bool reuse, int threads,
+                 const std::string& store_dir = {});
 
     /// The preview exposure of `frame` in stops: metered_exposure_stops of its smoothed log2
     /// luminance. Throws the input errors of the frames' documents.
@@ -47,8 +50,11 @@ class AutoExposure {
     /// log2 average luminance (cd/m2) of `frame`'s meter render.
     double log2_luminance(int64_t frame);
 
-    size_t meter_renders() const { return m_renders; }  ///< meter renders made so far
-    double meter_seconds() const { return m_seconds; }  ///< their wall time (build + render)
+    size_t meter_renders() const { return m_renders; }    ///< meter renders made so far
+    double meter_seconds() const { return m_seconds; }    ///< their wall time (build + render)
+    size_t stored_meterings() const { return m_stored; }  ///< meterings read from the store
+    /// Why the store could not be written (the first failure), or empty.
+    const std::string& store_problem() const { return m_store_problem; }
 
   private:
     const SceneSource& m_source;
@@ -56,10 +62,13 @@ class AutoExposure {
     bool m_reuse;
     int m_threads;
     SequenceCache m_cache;
+    MeterStore m_store;
     std::map<int64_t, double> m_by_frame;
     std::map<std::string, double> m_by_document;  ///< by the frame document's JSON text
     size_t m_renders = 0;
     double m_seconds = 0.0;
+    size_t m_stored = 0;
+    std::string m_store_problem;
 };
 
 }  // namespace kasumi

@@ -64,6 +64,7 @@ struct SequenceScene {
         : source(o.scene_path, o.overrides),
           cache(o.reuse),
           scene_path(o.scene_path),
+          meter_store(meter_store_dir(o.output_pattern)),
           reuse(o.reuse),
           threads(o.threads) {}
 
@@ -82,13 +83,15 @@ struct SequenceScene {
         PreviewSettings settings = preview_settings(desc);
         if (desc.render.preview.exposure_auto) {
             if (auto_exposure == nullptr)
-                auto_exposure = std::make_unique<AutoExposure>(source, scene_path, reuse, threads);
+                auto_exposure =
+                    std::make_unique<AutoExposure>(source, scene_path, reuse, threads, meter_store);
             settings.exposure_stops = auto_exposure->exposure_stops(frame);
         }
         return settings;
     }
 
     std::string scene_path;
+    std::string meter_store;  ///< auto exposure's store of meterings (sequence/meter_store.h)
     bool reuse;
     int threads;
     std::unique_ptr<AutoExposure> auto_exposure;  ///< made at the first "auto" frame
@@ -387,6 +390,10 @@ SequenceSummary run_sequence(const SequenceOptions& options) {
     if (scene.auto_exposure != nullptr) {
         summary.meter_renders = scene.auto_exposure->meter_renders();
         summary.meter_seconds = scene.auto_exposure->meter_seconds();
+        summary.stored_meterings = scene.auto_exposure->stored_meterings();
+        summary.meter_store = scene.auto_exposure->store_problem().empty()
+                                  ? scene.meter_store
+                                  : "not written: " + scene.auto_exposure->store_problem();
     }
     summary.seconds = seconds_since(run_start);
     return summary;

@@ -77,6 +77,8 @@ struct SequenceSummary {
     bool interrupted = false;     ///< cancelled: the frame in flight was not written
     size_t meter_renders = 0;     ///< auto exposure's meter renders (sequence/auto_exposure.h)
     double meter_seconds = 0.0;   ///< their wall time
+    size_t stored_meterings = 0;  ///< meterings read from the store (sequence/meter_store.h)
+    std::string meter_store;      ///< the store's directory, or why it could not be written
     ReuseCounts reuse;
     std::string contact_sheet;  ///< written path, or empty
     std::string movie;          ///< written path, or empty

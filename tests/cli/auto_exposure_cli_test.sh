@@ -2,7 +2,8 @@
 # `render.preview.exposure_stops: "auto"` (docs/sequences.md#auto-exposure): constant light gets
 # a constant exposure; after a step to 10x darker light the smoothed exposure settles exactly
 # log2(10) = 3.32 stops higher once the 24-frame window has passed the step; a frame's exposure
-# is the same rendered alone (a Slurm task) as in a whole run; the EXR's pixels do not change
+# is the same rendered alone (a Slurm task) as in a whole run, and from meterings stored on disk
+# by an earlier process; the EXR's pixels do not change
 # (absolute), only its kasumi/preview/* metadata; bad values exit 3 naming the JSON pointer.
 # usage: auto_exposure_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
@@ -64,6 +65,22 @@ expect_exit 0 "" -- sequence "$work/step.json" --frames 0-59 --frame 40 -o "$wor
   --threads 1
 [ "$(stops one/f.0040.exr)" = "$(stops s/f.0040.exr)" ] ||
   fail "frame 40 alone: $(stops one/f.0040.exr), in the run: $(stops s/f.0040.exr)"
+# The store of meterings beside the frames (sequence/meter_store.h): one file per distinct
+# document (1000 lux and 100 lux), read by a later process instead of metering again, with
+# exactly the exposure of the run; unreadable files are misses, metered again and replaced.
+[ "$(ls "$work/s/.kasumi-meter" | wc -l)" -eq 2 ] ||
+  fail "expected 2 stored meterings, got: $(ls "$work/s/.kasumi-meter")"
+expect_exit 0 "auto exposure: 0 meter renders .* 2 meterings read from the store" -- sequence \
+  "$work/step.json" --frames 0-59 --frame 40 -o "$work/s/g.####.exr" --threads 1
+[ "$(stops s/g.0040.exr)" = "$(stops s/f.0040.exr)" ] ||
+  fail "frame 40 from stored meterings: $(stops s/g.0040.exr), metered: $(stops s/f.0040.exr)"
+for f in "$work"/s/.kasumi-meter/*.json; do printf '{"log2_lumin' >"$f"; done
+expect_exit 0 "auto exposure: 2 meter renders .* 0 meterings read from the store" -- sequence \
+  "$work/step.json" --frames 0-59 --frame 41 -o "$work/s/h.####.exr" --threads 1
+[ "$(stops s/h.0041.exr)" = "$(stops s/f.0041.exr)" ] || fail "frame 41 after a corrupt store"
+for f in "$work"/s/.kasumi-meter/*.json; do
+  python3 -c "import json, sys; json.load(open(sys.argv[1]))" "$f" || fail "$f was not replaced"
+done
 # The EXR stays absolute: the same pixels with a fixed exposure.
 expect_exit 0 "" -- sequence "$work/step.json" --frames 40 -o "$work/fixed/f.####.exr" -q --threads 1 \
   --set /render/preview/exposure_stops=-3
