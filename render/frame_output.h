@@ -34,7 +34,6 @@ struct OutputPaths {
 void parse_output_format(const std::string& aovs_text, const std::string& compression_text,
                          uint32_t& aovs, ExrCompression& compression);
 
-
 /// Creates the parent directories of `path`; throws an output error naming the directory.
 void make_parent_dirs(const std::string& path);
 
