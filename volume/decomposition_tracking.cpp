@@ -16,17 +16,16 @@ float mean(const Rgb& c) {
 }  // namespace
 
 ControlExtinction control_extinction(const MediumSet& media, const MajorantSegment& s) {
+    // Grey: one control rate for every channel, so the control's collisions need no channel
+    // choice; the smallest channel's minorant is below every channel's sigma_t. Tested first:
+    // most segments of a cloud have a zero minorant and cost nothing more here.
+    const float sigma_c =
+        std::min({s.sigma_min.r, s.sigma_min.g, s.sigma_min.b, max_component(s.sigma_max)});
     const uint32_t mask = s.media_mask;
-    if (mask == 0 || (mask & (mask - 1)) != 0)
+    if (!(sigma_c > 0.0f) || mask == 0 || (mask & (mask - 1)) != 0)
         return {};
     const MediumSet::FastMedium& m = media.fast(static_cast<uint32_t>(__builtin_ctz(mask)));
     if (m.other)
-        return {};
-    // Grey: one control rate for every channel, so the control's collisions need no channel
-    // choice; the smallest channel's minorant is below every channel's sigma_t.
-    const float sigma_c =
-        std::min({s.sigma_min.r, s.sigma_min.g, s.sigma_min.b, max_component(s.sigma_max)});
-    if (!(sigma_c > 0.0f))
         return {};
     Rgb albedo(0.0f);
     for (int c = 0; c < 3; ++c)
@@ -75,8 +74,11 @@ FreeFlight sample_free_flight_decomposition(const MediumSet& media, const Ray& r
                 ++counters.density_lookups;
                 // The residual medium: sigma - control (>= 0 up to rounding, which the max
                 // guards); its null part mu - sigma_t is the full medium's.
-                const PointCoefficients k_r{glm::max(k.sigma_t - control.k.sigma_t, Rgb(0.0f)),
-                                            glm::max(k.sigma_s - control.k.sigma_s, Rgb(0.0f))};
+                const PointCoefficients k_r =
+                    sigma_c > 0.0f
+                        ? PointCoefficients{glm::max(k.sigma_t - control.k.sigma_t, Rgb(0.0f)),
+                                            glm::max(k.sigma_s - control.k.sigma_s, Rgb(0.0f))}
+                        : k;
                 const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
                 const Rgb w = throughput * flight.weight;
                 const float p_s = mean(w * k_r.sigma_s), p_n = mean(w * sigma_n);
