@@ -2,18 +2,11 @@
 
 #include "volume/majorant_walk.h"
 #include "volume/poisson_collisions.h"
+#include "volume/spectral_tracking_step.h"
 
 #include <algorithm>
 
 namespace kasumi {
-
-namespace {
-
-float mean(const Rgb& c) {
-    return (c.r + c.g + c.b) * (1.0f / 3.0f);
-}
-
-}  // namespace
 
 ControlExtinction control_extinction(const MediumSet& media, const MajorantSegment& s) {
     // Grey: one control rate for every channel, so the control's collisions need no channel
@@ -68,7 +61,6 @@ FreeFlight sample_free_flight_decomposition(const MediumSet& media, const Ray& r
         }
         const float t_end = std::min(t_c, s.t1);
         if (mu_r > 0.0f && t_end > s.t0) {
-            const float inv_mu_r = 1.0f / mu_r;
             const bool passed = residual.walk(s.t0, t_end, mu_r, [&](float t) {
                 const PointCoefficients k = coefficients_at(media, query, s, brick, t);
                 ++counters.density_lookups;
@@ -80,19 +72,11 @@ FreeFlight sample_free_flight_decomposition(const MediumSet& media, const Ray& r
                                             glm::max(k.sigma_s - control.k.sigma_s, Rgb(0.0f))}
                         : k;
                 const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
-                const Rgb w = throughput * flight.weight;
-                const float p_s = mean(w * k_r.sigma_s), p_n = mean(w * sigma_n);
-                if (!(p_s + p_n > 0.0f)) {
-                    flight.weight = Rgb(0.0f);
-                    return false;
-                }
-                if (rng.next_float() * (p_s + p_n) < p_s) {
+                const TrackingStep step = spectral_tracking_step(throughput, k_r.sigma_s, sigma_n,
+                                                                 mu_r, rng, flight.weight);
+                if (step == TrackingStep::Scatter)
                     scatter(t, s, k_r);
-                    flight.weight *= (p_s + p_n) * inv_mu_r / p_s;
-                    return false;
-                }
-                flight.weight *= sigma_n * ((p_s + p_n) * inv_mu_r / p_n);
-                return true;
+                return step == TrackingStep::Null;
             });
             if (!passed)
                 return false;
@@ -100,7 +84,7 @@ FreeFlight sample_free_flight_decomposition(const MediumSet& media, const Ray& r
         if (t_c < s.t1) {
             // A collision of the control part: real everywhere (its null part is 0), so the
             // flight scatters there with weight 1 / sigma_c; the control's albedo is in k.
-            if (!(mean(throughput * flight.weight * control.k.sigma_s) > 0.0f)) {
+            if (!(channel_mean(throughput * flight.weight * control.k.sigma_s) > 0.0f)) {
                 flight.weight = Rgb(0.0f);  // absorbed in every channel the path carries
                 return false;
             }
