@@ -250,12 +250,20 @@ PlanStage adaptive_sampling_plan_stage(const FilmDesc& film) {
 namespace {
 
 /// How the path tracer samples free flights (render.volume.spectral_mis, used only for
-/// chromatic, non-emitting media; volume/scattered_paths.cpp).
+/// chromatic, non-emitting media; render.volume.free_flight; volume/scattered_paths.cpp).
 std::string flight_summary(const SceneDesc& scene) {
-    const std::string tracking = "spectral (delta) tracking";
+    const MediumSet media(scene.media);
+    const bool decomposition = scene.render.volume.free_flight == FreeFlightSampling::Decomposition;
+    std::string tracking = "spectral (delta) tracking";
+    if (decomposition) {
+        tracking = media.emits() ? tracking + " (free_flight decomposition: media emit)"
+                                 : "decomposition tracking (Kutz et al. 2017; the per-brick "
+                                   "minorant's collisions drawn without lookups)";
+        if (scene.render.volume.nee_points > 0)
+            tracking += " past a roulette stop; the tracked walk (nee_points) draws the rest";
+    }
     if (!scene.render.volume.spectral_mis)
         return tracking;
-    const MediumSet media(scene.media);
     if (media.grey_extinction())
         return tracking + " (spectral_mis: extinction is grey)";
     if (media.emits())

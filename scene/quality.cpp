@@ -76,6 +76,12 @@ namespace {
 //   2026-12-04): uniform 1.29 s, relative MSE 0.00294; threshold 0.05 0.95 s, 0.00333:
 //   1.2x the efficiency but 13% more error per render, not a win at equal error; the same
 //   study on fog_street.json did not finish (its 4096-spp reference takes > 6 min here).
+// - render.volume.free_flight (decomposition tracking) and nee_roulette: no level sets them.
+//   cloud.json, multiple scattering, 16 spp, six seeds (docs/volumes.md, decomposition
+//   tracking, 2026-12-04): efficiency 38 /s today against 43 decomposition, 42 nee_roulette, 45
+//   both (1.13x / 1.12x / 1.18x, within the seeds' spread); on the 256³ cumulus and the WDAS
+//   cloud the single studies disagree in order (48 / 42 / 49 / 71 and 8.4 / 12.6 / 17.2 / 15.7
+//   at load 15-19): no win at equal error on all three clouds.
 constexpr QualityPreset kTable[] = {
     {QualityLevel::Draft, 4, 1.6, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008, 4.0, "march",
      0.000244, "unbiased-march"},

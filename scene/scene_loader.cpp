@@ -148,6 +148,10 @@ RenderSettings parse_render(const JsonNode& node) {
             render.volume.nee_roulette = roulette->as_bool();
         if (auto mis = volume.optional("spectral_mis"))
             render.volume.spectral_mis = mis->as_bool();
+        if (auto flight = volume.optional("free_flight"))
+            render.volume.free_flight = parse_choice<FreeFlightSampling>(
+                *flight, {{"tracking", FreeFlightSampling::Tracking},
+                          {"decomposition", FreeFlightSampling::Decomposition}});
         if (auto sampling = volume.optional("light_sampling"))
             render.volume.light_sampling = parse_choice<LightSampling>(
                 *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});

@@ -27,6 +27,12 @@ enum class Estimator {
     UnbiasedMarch,  ///< debiased jittered march (Kettunen et al. 2021): unbiased, signed
 };
 
+/// How the path tracer samples free flights in media (render.volume.free_flight).
+enum class FreeFlightSampling {
+    Tracking,       ///< spectral (delta) tracking against the majorant (Kutz et al. 2017, §3)
+    Decomposition,  ///< decomposition tracking: the minorant sampled analytically (§4)
+};
+
 /// How light scattered in media reaches the camera.
 enum class VolumeIntegrator {
     Single,    ///< single scattering: next-event estimation to every light
@@ -64,6 +70,9 @@ struct VolumeSettings {
     /// spectral tracking. Unbiased either way; grey or emitting media keep spectral tracking.
     bool spectral_mis = false;
     GuidingSettings guiding{};  ///< volume path guiding of multiple scattering (off by default)
+    /// The path tracer's free flights (volume/decomposition_tracking.h): decomposition tracking
+    /// draws the collisions of each segment's minorant without a density lookup. Unbiased.
+    FreeFlightSampling free_flight = FreeFlightSampling::Tracking;
 };
 
 struct VolumeResult {

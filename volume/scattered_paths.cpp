@@ -1,5 +1,6 @@
 #include "volume/scattered_paths.h"
 
+#include "volume/decomposition_tracking.h"
 #include "volume/guiding/guided_scattering.h"
 #include "volume/scattered_direct.h"
 #include "volume/spectral_mis_flight.h"
@@ -50,11 +51,14 @@ bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask,
 }
 
 /// A free flight by spectral MIS where render.volume.spectral_mis asks for it and the media are
-/// chromatic, else by spectral tracking: the same contract (FreeFlight), both unbiased.
+/// chromatic, else by decomposition tracking where render.volume.free_flight asks for it, else
+/// by spectral tracking: the same contract (FreeFlight), all unbiased.
 FreeFlight free_flight(const MediumSet& media, const Ray& ray, const Rgb& throughput,
                        const VolumeSettings& settings, Pcg32& rng, VolumeCounters& counters) {
     if (settings.spectral_mis && !media.grey_extinction())
         return sample_free_flight_spectral_mis(media, ray, throughput, rng, counters);
+    if (settings.free_flight == FreeFlightSampling::Decomposition)
+        return sample_free_flight_decomposition(media, ray, throughput, rng, counters);
     return sample_free_flight(media, ray, throughput, rng, counters);
 }
 

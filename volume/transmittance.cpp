@@ -3,6 +3,7 @@
 #include "volume/majorant_walk.h"
 #include "volume/march_walk.h"
 #include "volume/poisson_collisions.h"
+#include "volume/spectral_tracking_step.h"
 #include "volume/unbiased_march.h"
 
 #include <cmath>
@@ -262,25 +263,16 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
                 flight.emitted +=
                     throughput * flight.weight * media.emission(ray.at(t), s.media_mask) / mu;
             const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
-            const Rgb w = throughput * flight.weight;
-            const float p_s = mean(w * k.sigma_s), p_n = mean(w * sigma_n);
-            if (!(p_s + p_n > 0.0f)) {
-                flight.weight = Rgb(0.0f);
-                return false;
-            }
-            // Choose scattering with probability p_s / (p_s + p_n); dividing by it keeps the
-            // estimate unbiased for every channel.
-            if (rng.next_float() * (p_s + p_n) < p_s) {
-                flight.scattered = true;
-                flight.t = t;
-                flight.position = ray.at(t);
-                flight.media_mask = s.media_mask;
-                flight.k = k;
-                flight.weight *= (p_s + p_n) / (mu * p_s);
-                return false;
-            }
-            flight.weight *= sigma_n * ((p_s + p_n) / (mu * p_n));
-            return true;
+            const TrackingStep step =
+                spectral_tracking_step(throughput, k.sigma_s, sigma_n, mu, rng, flight.weight);
+            if (step != TrackingStep::Scatter)
+                return step == TrackingStep::Null;
+            flight.scattered = true;
+            flight.t = t;
+            flight.position = ray.at(t);
+            flight.media_mask = s.media_mask;
+            flight.k = k;
+            return false;
         });
     return flight;
 }

@@ -7,6 +7,7 @@
 #include "volume/unbiased_march.h"
 #include "core/rng.h"
 #include "tests/sample_mean.h"
+#include "tests/volume/smooth_cloud.h"
 #include "volume/debiased_exp.h"
 #include "volume/grid/density_grid.h"
 #include "volume/medium_set.h"
@@ -78,36 +79,9 @@ TEST(DebiasedExp, InfiniteDepthIsZeroNotNaN) {
     EXPECT_EQ(t.z, 0.0);
 }
 
-/// A grid medium over `grid` with extinction sigma_t per unit density (albedo 0.8), its box the
-/// index-space box `bounds` (index space is world space here).
-MediumSet grid_media(std::shared_ptr<DensityGrid> grid, float sigma_t, Bounds3 bounds) {
-    VdbMedium v;
-    v.grid = std::move(grid);
-    v.sigma_a_per_density = Rgb(0.2f * sigma_t);
-    v.sigma_s_per_density = Rgb(0.8f * sigma_t);
-    v.bounds_world = bounds;
-    return MediumSet({Medium{"grid", v}});
-}
-
-/// A smooth cloud of 40³ voxels: a ball of radius 16 whose density falls from 2 at the centre
-/// to 0 at its rim, modulated by a few sines (so bricks are neither constant nor empty), with
-/// one constant brick-aligned block of density 1.5 in a corner.
-std::shared_ptr<DensityGrid> smooth_cloud() {
-    auto grid = std::make_shared<DensityGrid>(IVec3(0), IVec3(39));
-    for (int z = 0; z < 40; ++z)
-        for (int y = 0; y < 40; ++y)
-            for (int x = 0; x < 40; ++x) {
-                const Vec3 p(x, y, z);
-                const float r = glm::length(p - Vec3(20.0f)) / 16.0f;
-                float d = std::max(0.0f, 2.0f * (1.0f - r)) *
-                          (1.0f + 0.4f * std::sin(0.7f * x) * std::cos(0.5f * y + 0.3f * z));
-                if (x <= 8 && y <= 8 && z <= 8)
-                    d = 1.5f;
-                grid->set(IVec3(x, y, z), d);
-            }
-    grid->finalize();
-    return grid;
-}
+using test::constant_grid;
+using test::grid_media;
+using test::smooth_cloud;
 
 Rgb one_estimate(const MediumSet& media, const Ray& ray, Estimator e, float step, uint64_t seed,
                  uint64_t stream) {
@@ -131,12 +105,7 @@ MeanAndError unbiased_mean(const MediumSet& media, const Ray& ray, int n, uint64
 
 TEST(UnbiasedMarch, ConstantBoxIsExactWithZeroVariance) {
     // Voxels 0..24 all 1, the box [0.5, 15.5]³: the rays cross only bricks whose bounds meet.
-    auto grid = std::make_shared<DensityGrid>(IVec3(0), IVec3(24));
-    for (int z = 0; z <= 24; ++z)
-        for (int y = 0; y <= 24; ++y)
-            for (int x = 0; x <= 24; ++x)
-                grid->set(IVec3(x, y, z), 1.0f);
-    grid->finalize();
+    const auto grid = constant_grid();
     for (const float sigma_t : {0.01f, 0.1f, 1.0f}) {
         const MediumSet media = grid_media(grid, sigma_t, Bounds3{Vec3(0.5f), Vec3(15.5f)});
         const Ray ray{Vec3(-2.0f, 3.3f, 7.1f), Vec3(1.0f, 0.0f, 0.0f), 0.0f, 30.0f};
