@@ -6,8 +6,8 @@
 // "shadows": "scanline" is timed by bench/shadow_study.sh). Light 0 must be a point, spot,
 // goniometric or directional light.
 // Usage: scanline_shadow_bench SCENE.json WxH [runs] [/json/pointer=VALUE]...
+#include "bench/shadow_bench_scene.h"
 #include "core/camera.h"
-#include "scene/scene_loader.h"
 #include "surface/scanline/scanline_shadows.h"
 #include "surface/surface_scene.h"
 
@@ -38,13 +38,9 @@ int main(int argc, char** argv) {
         if (std::sscanf(argv[2], "%dx%d", &width, &height) != 2 || width < 1 || height < 1)
             throw std::runtime_error(std::string("bad size ") + argv[2]);
         const int runs = argc > 3 ? std::max(1, std::stoi(argv[3])) : 3;
-        std::vector<Override> overrides;
-        for (int i = 4; i < argc; ++i)
-            overrides.push_back(parse_override(argv[i]));
-        const SceneDesc scene = load_scene(argv[1], overrides);
-        if (scene.lights.empty() || !is_delta(scene.lights[0]))
-            throw std::runtime_error("light 0 must be a point-like or directional light");
-        const LightCentre light = light_centre(scene.lights[0]);
+        const ShadowBenchScene loaded = load_shadow_bench_scene(argv[1], argc, argv, 4);
+        const SceneDesc& scene = loaded.scene;
+        const LightCentre& light = loaded.light;
         const Camera camera(scene.camera, width, height);
         ScanlineCamera view;
         view.eye = scene.camera.position;
