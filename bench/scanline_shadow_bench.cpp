@@ -1,7 +1,8 @@
 // The scanline shadow method (surface/scanline/scanline_shadows.h) on a scene, against ray
 // tracing: prints one JSON object with the scanline pass's time (median of `runs`, visibility
 // and shadow spans together), the time of the same image by camera rays and one shadow ray per
-// visible point, and the fraction of the pixels seeing a light-facing polygon whose lit/unlit
+// visible point, the per-span depth comparison's evaluations against the covered pixels a
+// Z-buffer would test, and the fraction of the pixels seeing a light-facing polygon whose lit/unlit
 // state differs (the pass alone, without spheres and without shading; the render mode
 // "shadows": "scanline" is timed by bench/shadow_study.sh). Light 0 must be a point, spot,
 // goniometric or directional light.
@@ -93,10 +94,11 @@ int main(int argc, char** argv) {
         std::sort(ray_times.begin(), ray_times.end());
         std::printf(
             "{\"pixels\": %zu, \"scanline_s\": %.6g, \"shadow_pairs\": %zu, \"spans\": %zu, "
+            "\"covered_pixels\": %zu, \"depth_evaluations\": %zu, "
             "\"ray_s\": %.6g, \"compared\": %zu, \"differ_fraction\": %.6g}\n",
             size_t(width) * height, times[times.size() / 2], image.shadow_pairs, image.spans,
-            ray_times[ray_times.size() / 2], compared,
-            compared > 0 ? double(differ) / double(compared) : 0.0);
+            image.covered_pixels, image.depth_evaluations, ray_times[ray_times.size() / 2],
+            compared, compared > 0 ? double(differ) / double(compared) : 0.0);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "scanline_shadow_bench: %s\n", e.what());
         return 1;
