@@ -1,13 +1,14 @@
 // The scanline shadow method (surface/scanline/scanline_shadows.h) on a scene, against ray
 // tracing: prints one JSON object with the scanline pass's time (median of `runs`, visibility
 // and shadow spans together), the time of the same image by camera rays and one shadow ray per
-// visible point, and the fraction of the pixels seeing a light-facing polygon whose lit/unlit
+// visible point, the per-span depth comparison's evaluations against the covered pixels a
+// Z-buffer would test, and the fraction of the pixels seeing a light-facing polygon whose lit/unlit
 // state differs (the pass alone, without spheres and without shading; the render mode
 // "shadows": "scanline" is timed by bench/shadow_study.sh). Light 0 must be a point, spot,
 // goniometric or directional light.
 // Usage: scanline_shadow_bench SCENE.json WxH [runs] [/json/pointer=VALUE]...
+#include "bench/shadow_bench_scene.h"
 #include "core/camera.h"
-#include "scene/scene_loader.h"
 #include "surface/scanline/scanline_shadows.h"
 #include "surface/surface_scene.h"
 
@@ -38,13 +39,9 @@ int main(int argc, char** argv) {
         if (std::sscanf(argv[2], "%dx%d", &width, &height) != 2 || width < 1 || height < 1)
             throw std::runtime_error(std::string("bad size ") + argv[2]);
         const int runs = argc > 3 ? std::max(1, std::stoi(argv[3])) : 3;
-        std::vector<Override> overrides;
-        for (int i = 4; i < argc; ++i)
-            overrides.push_back(parse_override(argv[i]));
-        const SceneDesc scene = load_scene(argv[1], overrides);
-        if (scene.lights.empty() || !is_delta(scene.lights[0]))
-            throw std::runtime_error("light 0 must be a point-like or directional light");
-        const LightCentre light = light_centre(scene.lights[0]);
+        const ShadowBenchScene loaded = load_shadow_bench_scene(argv[1], argc, argv, 4);
+        const SceneDesc& scene = loaded.scene;
+        const LightCentre& light = loaded.light;
         const Camera camera(scene.camera, width, height);
         ScanlineCamera view;
         view.eye = scene.camera.position;
@@ -97,10 +94,11 @@ int main(int argc, char** argv) {
         std::sort(ray_times.begin(), ray_times.end());
         std::printf(
             "{\"pixels\": %zu, \"scanline_s\": %.6g, \"shadow_pairs\": %zu, \"spans\": %zu, "
+            "\"covered_pixels\": %zu, \"depth_evaluations\": %zu, "
             "\"ray_s\": %.6g, \"compared\": %zu, \"differ_fraction\": %.6g}\n",
             size_t(width) * height, times[times.size() / 2], image.shadow_pairs, image.spans,
-            ray_times[ray_times.size() / 2], compared,
-            compared > 0 ? double(differ) / double(compared) : 0.0);
+            image.covered_pixels, image.depth_evaluations, ray_times[ray_times.size() / 2],
+            compared, compared > 0 ? double(differ) / double(compared) : 0.0);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "scanline_shadow_bench: %s\n", e.what());
         return 1;

@@ -8,9 +8,10 @@
 ///
 /// Visibility: the triangles of boxes, quads and meshes are clipped to the near plane and
 /// projected; a polygon table sorted by first scanline feeds an active polygon list; on each
-/// scanline every active polygon gives a span (its edges crossed at the scanline's centre)
-/// and the nearest span wins each pixel by depth (the exact depth of the pixel's ray on the
-/// polygon's plane, compared along the scanline: a scanline Z-buffer). Shadows: the runs of
+/// scanline every active polygon gives a span (its edges crossed at the scanline's centre);
+/// the spans' ends cut the scanline into segments, and depth is compared per segment: the
+/// nearest face at both ends of a segment is the nearest over all of it, as inverse depth is
+/// linear along the scanline (Watkins 1970), else the segment is halved. Shadows: the runs of
 /// pixels won by one face are its visible spans; for each, every occluder that may shadow the
 /// face (light-facing triangles of closed meshes, all of open ones; culled by their bounding
 /// cones from the light, computed once per face and kept: Bouknight & Kelley's "shadow
@@ -42,11 +43,15 @@ struct ScanlineImage {
     int width = 0, height = 0;
     std::vector<int32_t> shape, primitive;
     std::vector<uint8_t> shadowed;
-    size_t spans = 0;         ///< visible spans shadowed by the method
-    size_t shadow_pairs = 0;  ///< (face, occluder) pairs kept after culling
+    size_t spans = 0;              ///< visible spans shadowed by the method
+    size_t shadow_pairs = 0;       ///< (face, occluder) pairs kept after culling
+    size_t covered_pixels = 0;     ///< pixels inside some face's span (a Z-buffer's depth tests)
+    size_t depth_evaluations = 0;  ///< pixels whose depths the per-span comparison evaluated
 };
 
 /// Renders the visibility and shadows of `shapes`' polygons for a point or parallel light.
+/// Rows run in parallel bands (TBB, the caller's arena); the result is the same for any
+/// number of threads.
 ScanlineImage render_scanline_shadows(const std::vector<Shape>& shapes, const LightCentre& light,
                                       const ScanlineCamera& camera);
 

@@ -1,18 +1,13 @@
 #include "surface/shadows/convex_polygon.h"
 
+#include "surface/shadows/polygon_region.h"
+
 #include <glm/geometric.hpp>
 
 namespace kasumi {
 
 double area(const ConvexPolygon& polygon) {
-    const std::vector<DVec2>& v = polygon.vertices;
-    double twice = 0.0;
-    for (size_t i = 0, n = v.size(); i < n; ++i) {
-        const DVec2& a = v[i];
-        const DVec2& b = v[(i + 1) % n];
-        twice += a.x * b.y - a.y * b.x;
-    }
-    return 0.5 * twice;
+    return signed_area(polygon.vertices);
 }
 
 PolygonSplit split(const ConvexPolygon& polygon, const HalfPlane& h, double tolerance) {

@@ -11,23 +11,24 @@ struct Rect {
     DVec2 min, max;
 };
 
-Rect bounds(const ConvexPolygon& polygon) {
-    Rect r{polygon.vertices.front(), polygon.vertices.front()};
-    for (const DVec2& v : polygon.vertices) {
-        r.min = glm::min(r.min, v);
-        r.max = glm::max(r.max, v);
-    }
+Rect bounds(const PolygonRegion& polygon) {
+    Rect r{polygon.rings.front().front(), polygon.rings.front().front()};
+    for (const Ring& ring : polygon.rings)
+        for (const DVec2& v : ring) {
+            r.min = glm::min(r.min, v);
+            r.max = glm::max(r.max, v);
+        }
     return r;
 }
 
 }  // namespace
 
-PolygonGrid::PolygonGrid(const std::vector<ConvexPolygon>& polygons) : m_polygons(&polygons) {
+PolygonGrid::PolygonGrid(const std::vector<PolygonRegion>& polygons) : m_polygons(&polygons) {
     if (polygons.empty())
         return;
     std::vector<Rect> rects;
     Rect all = bounds(polygons.front());
-    for (const ConvexPolygon& p : polygons) {
+    for (const PolygonRegion& p : polygons) {
         rects.push_back(bounds(p));
         all.min = glm::min(all.min, rects.back().min);
         all.max = glm::max(all.max, rects.back().max);
@@ -74,7 +75,7 @@ bool PolygonGrid::contains(const DVec2& p) const {
         return false;
     const size_t c = size_t(fv) * m_nu + size_t(fu);
     for (uint32_t k = m_first[c]; k < m_first[c + 1]; ++k)
-        if (kasumi::contains((*m_polygons)[m_items[k]], p, 0.0))
+        if (kasumi::contains((*m_polygons)[m_items[k]], p))
             return true;
     return false;
 }

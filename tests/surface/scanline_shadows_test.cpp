@@ -6,6 +6,9 @@
 #include "tests/surface/shadow_test_scene.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cstdio>
 
 namespace kasumi {
 namespace {
@@ -63,6 +66,38 @@ TEST(ScanlineShadowTest, AgreesWithRayTracingOffShadowEdges) {
         EXPECT_EQ(c.wrong_face, 0);
         EXPECT_EQ(c.differ, 0);
     }
+}
+
+// The rows run in parallel bands: the image and the counts are the same for 1, 2 and 3 threads.
+TEST(ScanlineShadowTest, SameImageForAnyThreadCount) {
+    const PinholeView view = pinhole_view(Vec3(0.7f, 3.1f, 6.3f), Vec3(0.0f, 0.5f, 0.0f), 320, 200);
+    ScanlineCamera camera;
+    camera.eye = view.eye;
+    camera.forward = view.forward;
+    camera.right = view.right;
+    camera.up = view.up;
+    camera.half_width = 0.8;
+    camera.width = view.w;
+    camera.height = view.h;
+    const LightCentre light = point_centre(Vec3(0.4f, 4.2f, 0.9f));
+    std::vector<ScanlineImage> images;
+    for (int threads : {1, 2, 3}) {
+        tbb::task_arena arena(threads);
+        arena.execute(
+            [&] { images.push_back(render_scanline_shadows(mesh_scene(), light, camera)); });
+    }
+    for (size_t i = 1; i < images.size(); ++i) {
+        EXPECT_EQ(images[i].shape, images[0].shape);
+        EXPECT_EQ(images[i].primitive, images[0].primitive);
+        EXPECT_EQ(images[i].shadowed, images[0].shadowed);
+        EXPECT_EQ(images[i].spans, images[0].spans);
+        EXPECT_EQ(images[i].shadow_pairs, images[0].shadow_pairs);
+    }
+    EXPECT_GT(images[0].spans, 500u);
+    // Depth is compared per span segment: far fewer depth evaluations than covered pixels.
+    std::printf("covered pixels %zu, depth evaluations %zu\n", images[0].covered_pixels,
+                images[0].depth_evaluations);
+    EXPECT_LT(images[0].depth_evaluations, images[0].covered_pixels / 4);
 }
 
 }  // namespace

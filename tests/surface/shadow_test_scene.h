@@ -8,6 +8,7 @@
 #include "tests/surface/test_shapes.h"
 
 #include <cmath>
+#include <optional>
 
 namespace kasumi {
 
@@ -161,24 +162,51 @@ inline PinholeView pinhole_view(const Vec3& eye, const Vec3& target, int w, int 
     return v;
 }
 
-/// By ray tracing, what image point (x, y) sees: −1 for nothing, or a surface turned away from
-/// the light; else shape index × 2 + 1 if a shadow ray toward the light is blocked, + 0 if not.
-inline int ray_shadow_state(const SurfaceScene& scene, const LightCentre& light,
-                            const PinholeView& view, float x, float y) {
+/// What the camera ray through image point (x, y) sees when it is a surface facing the light:
+/// the hit, the ray's direction, the hit offset toward the light, and whether a shadow ray from
+/// there toward the light is blocked (ray-traced shadows, the reference of the polygon methods).
+struct FacingHit {
+    SurfaceHit hit;
+    Vec3 direction{0.0f};
+    Vec3 origin{0.0f};
+    bool ray_shadow = false;
+};
+
+inline std::optional<FacingHit> facing_hit(const SurfaceScene& scene, const LightCentre& light,
+                                           const PinholeView& view, float x, float y) {
     const Vec3 dir = view.direction(x, y);
     const auto hit = scene.intersect(Ray{view.eye, dir, 0.0f, kInfinity});
     if (!hit)
-        return -1;
+        return std::nullopt;
     Vec3 n = hit->geometric_normal;
     if (glm::dot(n, dir) > 0.0f)
         n = -n;
     const Vec3 wi = toward_light(light, hit->position);
     if (glm::dot(n, wi) <= 0.0f)
-        return -1;
+        return std::nullopt;
     const Vec3 origin = offset_ray_origin(*hit, wi);
     const float reach =
         light.at_infinity ? kInfinity : glm::length(light.position - origin) * (1 - 1e-5f);
-    return int(hit->shape) * 2 + (scene.occluded(Ray{origin, wi, 0.0f, reach}) ? 1 : 0);
+    return FacingHit{*hit, dir, origin, scene.occluded(Ray{origin, wi, 0.0f, reach})};
+}
+
+/// Calls visit(x, y, facing) for every pixel of `view` whose centre sees a surface facing the
+/// light, row by row.
+template <class Visit>
+void for_each_facing_pixel(const SurfaceScene& scene, const LightCentre& light,
+                           const PinholeView& view, Visit&& visit) {
+    for (int y = 0; y < view.h; ++y)
+        for (int x = 0; x < view.w; ++x)
+            if (const auto f = facing_hit(scene, light, view, x + 0.5f, y + 0.5f))
+                visit(x, y, *f);
+}
+
+/// By ray tracing, what image point (x, y) sees: −1 for nothing, or a surface turned away from
+/// the light; else shape index × 2 + 1 if a shadow ray toward the light is blocked, + 0 if not.
+inline int ray_shadow_state(const SurfaceScene& scene, const LightCentre& light,
+                            const PinholeView& view, float x, float y) {
+    const auto f = facing_hit(scene, light, view, x, y);
+    return f ? int(f->hit.shape) * 2 + (f->ray_shadow ? 1 : 0) : -1;
 }
 
 }  // namespace kasumi

@@ -26,31 +26,15 @@ Comparison compare_image(const std::vector<Shape>& shapes, const LightCentre& li
     const ShadowVolumes volumes(shapes, light, scene.bounds());
     const PinholeView view = pinhole_view(eye, target, w, h);
     Comparison c;
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            const Vec3 dir = view.direction(x + 0.5f, y + 0.5f);
-            const auto hit = scene.intersect(Ray{eye, dir, 0.0f, kInfinity});
-            if (!hit)
-                continue;
-            Vec3 n = hit->geometric_normal;
-            if (glm::dot(n, dir) > 0.0f)
-                n = -n;
-            const Vec3 wi = toward_light(light, hit->position);
-            if (glm::dot(n, wi) <= 0.0f)
-                continue;
-            ++c.shaded;
-            const Vec3 origin = offset_ray_origin(*hit, wi);
-            const float reach =
-                light.at_infinity ? kInfinity : glm::length(light.position - origin) * (1 - 1e-5f);
-            const bool ray_shadow = scene.occluded(Ray{origin, wi, 0.0f, reach});
-            const bool volume_shadow = volumes.in_shadow(origin, dir);
-            c.shadowed += ray_shadow ? 1 : 0;
-            c.differ += ray_shadow != volume_shadow ? 1 : 0;
-            const int fail = volumes.depth_fail_count(origin, dir);
-            EXPECT_GE(fail, 0);
-            c.pass_differ += volumes.depth_pass_count(eye, origin) != fail ? 1 : 0;
-        }
-    }
+    for_each_facing_pixel(scene, light, view, [&](int, int, const FacingHit& f) {
+        ++c.shaded;
+        const bool volume_shadow = volumes.in_shadow(f.origin, f.direction);
+        c.shadowed += f.ray_shadow ? 1 : 0;
+        c.differ += f.ray_shadow != volume_shadow ? 1 : 0;
+        const int fail = volumes.depth_fail_count(f.origin, f.direction);
+        EXPECT_GE(fail, 0);
+        c.pass_differ += volumes.depth_pass_count(eye, f.origin) != fail ? 1 : 0;
+    });
     return c;
 }
 
