@@ -206,9 +206,12 @@ void compose_air_and_media(const SceneRuntime& scene, const Ray& ray, float t_en
         sample.transmittance = media_transmittance * air.transmittance();
     } else {
         // The sky beyond the media: the rest of the air, the planet's ground and the sun's disc
-        // seen from where the media end.
-        sample.surface = sky.background(
-            Ray{ray.at(static_cast<float>(t_out)), ray.direction, 0.0f, kInfinity}, rng);
+        // seen from where the media end (within SkyRenderer::kEnvironmentNearM of the camera,
+        // the camera's own sky view: the same sky as the pixels beside the media, at the cost
+        // of counting up to 100 m of air twice).
+        sample.surface =
+            sky.environment(Ray{ray.at(static_cast<float>(t_out)), ray.direction, 0.0f, kInfinity},
+                            /*sun_disc=*/true, rng);
         sample.transmittance = media_transmittance * air.transmittance();
     }
     sample.volume = volume;

@@ -15,9 +15,9 @@
 /// L_med,k, T_med,k are the media's scattered light and transmittance over the piece (the
 /// scene's volume stage, render/integrator.h), M_k = prod_{j<k} T_med,j, dL_air,k =
 /// L_air(0, b_k) - L_air(0, a_k) and L_behind is the surface or, for a ray that meets none,
-/// the sky beyond t_out (SkyRenderer::background from x(t_out)). Inside a piece the air and the
-/// media are mixed: with optical depths tau_a = -ln T_air,k and tau_m = -ln T_med,k, each
-/// one's light is scaled by its share of a homogeneous mixture of the two,
+/// the sky beyond t_out (SkyRenderer::environment from x(t_out), sun disc included). Inside a
+/// piece the air and the media are mixed: with optical depths tau_a = -ln T_air,k and
+/// tau_m = -ln T_med,k, each one's light is scaled by its share of a homogeneous mixture,
 ///   s_air = g(tau_a + tau_m) / g(tau_a),  s_med = g(tau_a + tau_m) / g(tau_m),
 ///   g(x) = (1 - e^{-x}) / x,
 /// exact when both are homogeneous over the piece (their source terms then add, and the
