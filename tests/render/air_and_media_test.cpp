@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "sky/sky_reference.h"
 #include "tests/render/quiet_render_options.h"
+#include "tests/render/trace_pair.h"
 #include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
@@ -109,15 +110,11 @@ TEST(AirAndMedia, TransparentCloudChangesNothingBitForBit) {
     for (int k = 0; k < 24; ++k) {
         // Rays to the ground, through the cloud's box and to the sky.
         const Vec3 d = glm::normalize(Vec3(1.0f, 0.04f * k - 0.3f, 0.03f * k - 0.36f));
-        RenderCounters c_with, c_without;
-        Pcg32 rng_with(11, static_cast<uint64_t>(k)), rng_without(11, static_cast<uint64_t>(k));
-        const Ray ray{origin, d, 0.0f, kInfinity};
-        const PixelSample a = trace_camera_ray(*with, ray, rng_with, c_with);
-        const PixelSample b = trace_camera_ray(*without, ray, rng_without, c_without);
-        EXPECT_EQ(a.radiance, b.radiance) << k;
-        EXPECT_EQ(a.volume, b.volume) << k;
-        EXPECT_EQ(a.transmittance, b.transmittance) << k;
-        EXPECT_EQ(a.surface, b.surface) << k;
+        const TracedPair p = trace_pair(*with, *without, Ray{origin, d, 0.0f, kInfinity}, 11, k);
+        EXPECT_EQ(p.a.radiance, p.b.radiance) << k;
+        EXPECT_EQ(p.a.volume, p.b.volume) << k;
+        EXPECT_EQ(p.a.transmittance, p.b.transmittance) << k;
+        EXPECT_EQ(p.a.surface, p.b.surface) << k;
     }
 }
 
