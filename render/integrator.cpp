@@ -1,6 +1,7 @@
 #include "render/integrator.h"
 
 #include "lights/light_samples.h"
+#include "render/air_and_media.h"
 #include "render/sky_environment.h"
 #include "render/sky_shafts.h"
 #include "render/whitted.h"
@@ -249,13 +250,14 @@ Rgb shade_surface(const SceneRuntime& scene, const SurfaceHit& hit, const Vec3& 
 }
 
 VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment, Pcg32& rng,
-                                  RenderCounters& counters, const PathGuiding* guiding) {
+                                  RenderCounters& counters, const PathGuiding* guiding,
+                                  const std::vector<Light>* lights) {
     ++counters.volume_rays;
     VolumeCounters vc;
     const RenderPathEnvironment environment(scene, counters);
     VolumeResult v = integrate_media(
-        scene.media(), scene.desc().lights, scene.occlusion(), &environment, segment,
-        scene.desc().render.volume, scene.plan().in_scattering, rng, vc,
+        scene.media(), lights != nullptr ? *lights : scene.desc().lights, scene.occlusion(),
+        &environment, segment, scene.desc().render.volume, scene.plan().in_scattering, rng, vc,
         !(segment.t_max < kInfinity) && is_black(scene.desc().background) && scene.sky() == nullptr,
         guiding);
     counters.volume_steps += vc.steps;
@@ -304,6 +306,11 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
         }
     }
 
+    // With an atmosphere the air and the media are composed as one medium (and the sky too).
+    if (scene.plan().volume && scene.sky() != nullptr) {
+        compose_air_and_media(scene, ray, t_end, rng, counters, guiding, sample);
+        return sample;
+    }
     if (scene.plan().volume) {
         Ray segment = ray;
         segment.t_max = t_end;

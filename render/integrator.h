@@ -21,9 +21,11 @@ PixelSample trace_camera_ray(const SceneRuntime& scene, const Ray& ray, Pcg32& r
 /// The volume stage over one ray segment [segment.t_min, segment.t_max) (t_max: the first
 /// surface, or kInfinity): transmittance and in-scattered radiance, for camera rays and for
 /// Whitted's reflected and refracted rays alike. Counts one volume ray. `guiding` as
-/// integrate_media's (volume/volume_path.h). Never throws.
+/// integrate_media's (volume/volume_path.h). `lights`, if given, replace the scene's lights
+/// for this segment (render/air_and_media.h: the sun as seen from the segment). Never throws.
 VolumeResult trace_volume_segment(const SceneRuntime& scene, const Ray& segment, Pcg32& rng,
-                                  RenderCounters& counters, const PathGuiding* guiding = nullptr);
+                                  RenderCounters& counters, const PathGuiding* guiding = nullptr,
+                                  const std::vector<Light>* lights = nullptr);
 
 /// What is known, before any shadow ray, about whether a light is blocked by surfaces at a
 /// shading point (gi/photon/photon_shadow.h decides it from shadow photons).

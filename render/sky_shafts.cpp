@@ -1,6 +1,7 @@
 #include "render/sky_shafts.h"
 
 #include "sky/sky_reference.h"
+#include "sky/sun_through_air.h"
 #include "volume/transmittance.h"
 
 #include <algorithm>
@@ -9,18 +10,6 @@
 namespace kasumi {
 
 namespace {
-
-/// Transmittance of the air from world point x toward the sun (with the visible fraction of its
-/// disc): the table in fast mode, the reference quadrature otherwise.
-Bands air_to_sun(const SkyRenderer& renderer, const DVec3& x) {
-    const SkyScene& sky = renderer.sky();
-    if (const SkyLuts* luts = renderer.luts()) {
-        Bands t{};
-        luts->sun_transmittance(sky, x, t);
-        return t;
-    }
-    return sun_transmittance(sky, x, sky.settings.sun_steps);
-}
 
 bool any_positive(const Bands& b, int n) {
     for (int i = 0; i < n; ++i) {
@@ -52,7 +41,7 @@ Rgb shadowed_sun_scattering(const SceneRuntime& scene, const Ray& ray, float t_e
         return Rgb(0.0f);
     // The sun set for the whole segment (it is short against the Earth's curvature): nothing
     // to shadow.
-    if (!any_positive(air_to_sun(*renderer, p + 0.5 * (lo + hi) * d), a.bands))
+    if (!any_positive(sun_transmittance_at(*renderer, p + 0.5 * (lo + hi) * d), a.bands))
         return Rgb(0.0f);
 
     const int n = settings.shaft_samples;
@@ -113,7 +102,7 @@ Rgb shadowed_sun_scattering(const SceneRuntime& scene, const Ray& ray, float t_e
             continue;
         const DVec3 x = p + s[i] * d;
         const AtmosphereCoefficients c = atmosphere_coefficients(a, altitude(s[i]));
-        const Bands t_sun = air_to_sun(*renderer, x);
+        const Bands t_sun = sun_transmittance_at(*renderer, x);
         Bands scattered{};
         for (int b = 0; b < a.bands; ++b) {
             scattered[b] = stratum * std::exp(-tau[b]) *

@@ -368,8 +368,16 @@ Plan make_plan(const SceneDesc& scene) {
                                                                   : "black background"});
     for (const SkyPlanStage& s : sky_plan_stages(scene.sky.get()))
         plan.stages.push_back({s.name, s.enabled, s.reason});
-    if (scene.sky != nullptr)
+    if (scene.sky != nullptr) {
         plan.stages.push_back(sky_shafts_plan_stage(scene, plan));
+        plan.stages.push_back(
+            {"air-and-media", plan.volume,
+             plan.volume ? "the atmosphere and the media composed as one medium along camera "
+                           "rays (render/air_and_media.h): the air in front of, among (pieces "
+                           "of max(250 m, t/8)) and behind the media, each piece's media lit "
+                           "by the sun through the air above it"
+                         : "no media: the air alone in front of surfaces"});
+    }
     plan.stages.push_back(quality_plan_stage(scene));
     plan.stages.push_back(adaptive_sampling_plan_stage(scene.film));
     return plan;

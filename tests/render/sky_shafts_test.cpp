@@ -15,6 +15,7 @@
 #include "render/probe.h"
 #include "scene/plan.h"
 #include "sky/sky_reference.h"
+#include "tests/render/trace_pair.h"
 #include "tests/test_scene.h"
 
 #include <gtest/gtest.h>
@@ -102,14 +103,10 @@ TEST(SkyShafts, NoOccluderGivesExactlyTheUnshadowedAir) {
     const auto off = runtime_from_text(scene_text(o));
     for (int k = 0; k < 16; ++k) {
         const Vec3 d = glm::normalize(Vec3(1.0f, 0.02f * k - 0.1f, 0.05f * k - 0.4f));
-        RenderCounters c_on, c_off;
-        Pcg32 rng_on(7, static_cast<uint64_t>(k)), rng_off(7, static_cast<uint64_t>(k));
-        const Ray ray{kOrigin, d, 0.0f, kInfinity};
-        const PixelSample a = trace_camera_ray(*on, ray, rng_on, c_on);
-        const PixelSample b = trace_camera_ray(*off, ray, rng_off, c_off);
-        EXPECT_EQ(a.radiance, b.radiance) << k;
-        EXPECT_EQ(a.volume, b.volume) << k;
-        EXPECT_EQ(c_on.surface_shadow_rays, c_off.surface_shadow_rays + 16u) << k;
+        const TracedPair p = trace_pair(*on, *off, Ray{kOrigin, d, 0.0f, kInfinity}, 7, k);
+        EXPECT_EQ(p.a.radiance, p.b.radiance) << k;
+        EXPECT_EQ(p.a.volume, p.b.volume) << k;
+        EXPECT_EQ(p.counters_a.surface_shadow_rays, p.counters_b.surface_shadow_rays + 16u) << k;
     }
 }
 
