@@ -64,6 +64,11 @@ struct VolumeSettings {
     /// spectral tracking. Unbiased either way; grey or emitting media keep spectral tracking.
     bool spectral_mis = false;
     GuidingSettings guiding{};  ///< volume path guiding of multiple scattering (off by default)
+    /// Stochastic (one-voxel) trilinear filtering of the trackers' grid lookups
+    /// (render.volume.density_filter "stochastic"; MediumSet::set_stochastic_filter,
+    /// docs/volumes.md): unbiased for the trackers; the march and the light cache keep
+    /// trilinear lookups. false: trilinear everywhere.
+    bool stochastic_filter = false;
 };
 
 struct VolumeResult {
