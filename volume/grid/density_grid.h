@@ -51,18 +51,10 @@ class DensityGrid {
 
     /// Trilinear density at an index-space point; 0 outside the stored region. Never throws.
     float density(const Vec3& p_index) const {
-        const Vec3 q = p_index - m_origin_f;
-        // floor(q) >= 0 iff q >= 0, and floor(q) < n iff q < n for an integer n; in that range
-        // the integer conversion (truncation) is the floor, without a rounding-mode dance.
-        if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < m_cells_f.x && q.y < m_cells_f.y &&
-              q.z < m_cells_f.z))
-            return 0.0f;
-        const IVec3 c(q);
-        const int32_t brick = m_brick_index[brick_slot(c >> 3)];
-        if (brick < 0)
-            return 0.0f;
-        return trilinear(&m_voxels[static_cast<size_t>(brick) * kBrickVoxels], c & (kBrick - 1),
-                         q - Vec3(c));
+        IVec3 l;
+        Vec3 f;
+        const float* brick = locate(p_index, l, f);
+        return brick != nullptr ? trilinear(brick, l, f) : 0.0f;
     }
 
     /// One coordinate of a lookup point as density() splits it, for a caller that looks up many
@@ -151,16 +143,10 @@ class DensityGrid {
     /// density() filtered stochastically (density_in_stochastic): unbiased for density() over
     /// uniform `bits`. 0 outside the stored region. Never throws.
     float density_stochastic(const Vec3& p_index, uint64_t bits) const {
-        const Vec3 q = p_index - m_origin_f;
-        if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < m_cells_f.x && q.y < m_cells_f.y &&
-              q.z < m_cells_f.z))
-            return 0.0f;
-        const IVec3 c(q);
-        const int32_t brick = m_brick_index[brick_slot(c >> 3)];
-        if (brick < 0)
-            return 0.0f;
-        return pick_voxel(&m_voxels[static_cast<size_t>(brick) * kBrickVoxels], c & (kBrick - 1),
-                          q - Vec3(c), bits);
+        IVec3 l;
+        Vec3 f;
+        const float* brick = locate(p_index, l, f);
+        return brick != nullptr ? pick_voxel(brick, l, f, bits) : 0.0f;
     }
 
     /// Walks the index-space ray o + t d, t in [t0, t1], in order through the non-empty bricks
@@ -188,6 +174,24 @@ class DensityGrid {
   private:
     friend class DensityGridBuilder;  // volume/grid/density_grid_build.h: parallel construction
 
+    /// The stored voxels of the brick holding index-space point p_index, with the local index l
+    /// of its cell and the fractions f within it; null (l, f untouched) outside the stored
+    /// region or in an empty brick.
+    const float* locate(const Vec3& p_index, IVec3& l, Vec3& f) const {
+        const Vec3 q = p_index - m_origin_f;
+        // floor(q) >= 0 iff q >= 0, and floor(q) < n iff q < n for an integer n; in that range
+        // the integer conversion (truncation) is the floor, without a rounding-mode dance.
+        if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < m_cells_f.x && q.y < m_cells_f.y &&
+              q.z < m_cells_f.z))
+            return nullptr;
+        const IVec3 c(q);
+        const int32_t brick = m_brick_index[brick_slot(c >> 3)];
+        if (brick < 0)
+            return nullptr;
+        l = c & (kBrick - 1);
+        f = q - Vec3(c);
+        return &m_voxels[static_cast<size_t>(brick) * kBrickVoxels];
+    }
     /// Prefetches the cache lines of the trilinear cell whose voxel (0, 0, 0) is at v: its four
     /// x-rows (two voxels each) at +0, +dy, +dz and +dy+dz.
     static void prefetch_cell(const float* v) {
