@@ -111,9 +111,12 @@ TEST(StochasticFilter, MeanOfLookupsIsTheTrilinearDensity) {
 
 TEST(StochasticFilter, TrackersTransmittanceMatchesTheTrilinearMarch) {
     const auto grid = random_grid(9);
-    // sigma_a 0.02, sigma_s 0.08 per unit density, index space = world space.
-    const VdbMedium v{grid,       Mat4(1.0f),  Rgb(0.02f),
-                      Rgb(0.08f), Isotropic{}, Bounds3{grid->lower(), grid->upper()}};
+    // sigma_s 0.08, sigma_a 0.02 per unit density, index space = world space.
+    VdbMedium v;
+    v.grid = grid;
+    v.bounds_world = Bounds3{grid->lower(), grid->upper()};
+    v.sigma_s_per_density = Rgb(0.08f);
+    v.sigma_a_per_density = v.sigma_s_per_density * 0.25f;
     const MediumSet trilinear({Medium{"blocks", v}});
     MediumSet stochastic({Medium{"blocks", v}});
     stochastic.set_stochastic_filter(true);
