@@ -1,8 +1,9 @@
-// Raw trilinear density lookups on one grid, three ways: OpenVDB (tools::BoxSampler through a
-// ValueAccessor), NanoVDB (SampleFromVoxels order 1 through a ReadAccessor) and our DensityGrid
-// (bricks with aprons, volume/grid/density_grid.h), plus the all-in MediumSet::coefficients that
-// the trackers call (world-to-index transform and the coefficient scaling on top). The only file
-// outside volume/vdb_*.cpp that includes OpenVDB headers.
+// Raw trilinear density lookups on one grid, three ways (and our stochastic one-voxel lookup):
+// OpenVDB (tools::BoxSampler through a ValueAccessor), NanoVDB (SampleFromVoxels order 1 through a
+// ReadAccessor) and our DensityGrid (bricks with aprons, volume/grid/density_grid.h), plus the
+// all-in MediumSet::coefficients that the trackers call (world-to-index transform and the
+// coefficient scaling on top). The only file outside volume/vdb_*.cpp that includes OpenVDB
+// headers.
 //
 // The grid: $KASUMI_BENCH_VDB (default data/clouds/cumulus_256.vdb, relative to the working
 // directory; make it with `kasumi make-cloud --res 256 --seed 7 -o data/clouds/cumulus_256.vdb`).
@@ -22,6 +23,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -154,6 +156,30 @@ void BM_KasumiDensityGrid(benchmark::State& state) {
     label(state);
 }
 
+// Stochastic (one-voxel) trilinear lookups (DensityGrid::density_stochastic, render.volume.
+// density_filter "stochastic"): each with its random bits made as RayMediaQuery makes them (two
+// SplitMix64 finalisers of a seed, the point's bits and the lookup's ordinal), so the time is
+// what a tracker's lookup costs with the option on.
+void BM_KasumiDensityStochastic(benchmark::State& state) {
+    const auto& pts = points_f(static_cast<int>(state.range(0)));
+    const kasumi::DensityGrid& grid = *fixture().ours.grid;
+    const uint64_t seed = kasumi::mix64(7);
+    for (auto _ : state) {
+        float sum = 0.0f;
+        uint32_t ordinal = 0;
+        for (const kasumi::Vec3& p : pts) {
+            uint32_t tb = 0;
+            std::memcpy(&tb, &p.x, sizeof(float));
+            const uint64_t bits =
+                kasumi::mix64(seed ^ kasumi::mix64((static_cast<uint64_t>(tb) << 32) | ordinal++));
+            sum += grid.density_stochastic(p, bits);
+        }
+        benchmark::DoNotOptimize(sum);
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * pts.size()));
+    label(state);
+}
+
 void BM_KasumiCoefficients(benchmark::State& state) {
     const auto& pts =
         state.range(0) == 0 ? fixture().ray_points_world : fixture().random_points_world;
@@ -171,6 +197,7 @@ void BM_KasumiCoefficients(benchmark::State& state) {
 BENCHMARK(BM_OpenVdbBoxSampler)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NanoVdbTrilinear)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_KasumiDensityGrid)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_KasumiDensityStochastic)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_KasumiCoefficients)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

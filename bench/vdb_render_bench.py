@@ -80,6 +80,14 @@ CONFIGS = [
     ("unbiased-march", {"integrator": "single", "estimator": "unbiased-march"}, True),
     ("unbiased-march, 4 next-event points",
      {"integrator": "single", "estimator": "unbiased-march", "nee_points": 4}, True),
+    # Stochastic one-voxel trilinear lookups in the trackers (render.volume.density_filter,
+    # docs/volumes.md), unbiased: --configs 10,11.
+    ("residual-ratio, 4 next-event points, stochastic filter",
+     {"integrator": "single", "estimator": "residual-ratio", "nee_points": 4,
+      "density_filter": "stochastic"}, True),
+    ("unbiased-march, 4 next-event points, stochastic filter",
+     {"integrator": "single", "estimator": "unbiased-march", "nee_points": 4,
+      "density_filter": "stochastic"}, True),
 ]
 
 

@@ -92,6 +92,7 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
     if (m_plan.volume) {
         const auto start = Clock::now();
         m_media = MediumSet(m_desc.media);
+        m_media.set_stochastic_filter(m_desc.render.volume.stochastic_filter);
         m_build_times.media_s = since(start);
     }
     if (m_desc.sky) {

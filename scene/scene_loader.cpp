@@ -157,6 +157,16 @@ RenderSettings parse_render(const JsonNode& node) {
                 *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});
         if (auto guiding = volume.optional("guiding"))
             render.volume.guiding = parse_guiding(*guiding);
+        if (auto filter = volume.optional("density_filter")) {
+            render.volume.stochastic_filter =
+                parse_choice<bool>(*filter, {{"trilinear", false}, {"stochastic", true}});
+            if (render.volume.stochastic_filter && render.volume.estimator_given &&
+                render.volume.estimator == Estimator::March)
+                filter->fail(
+                    "\"stochastic\" needs an unbiased tracker (estimator \"delta\", \"ratio\", "
+                    "\"residual-ratio\" or \"unbiased-march\"): the march's exp of a noisy "
+                    "depth is biased (docs/volumes.md)");
+        }
         volume.finish();
     }
     if (auto v = reader.optional("whitted")) {

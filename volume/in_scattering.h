@@ -73,6 +73,11 @@ struct VolumeSettings {
     /// The path tracer's free flights (volume/decomposition_tracking.h): decomposition tracking
     /// draws the collisions of each segment's minorant without a density lookup. Unbiased.
     FreeFlightSampling free_flight = FreeFlightSampling::Tracking;
+    /// Stochastic (one-voxel) trilinear filtering of the trackers' grid lookups
+    /// (render.volume.density_filter "stochastic"; MediumSet::set_stochastic_filter,
+    /// docs/volumes.md): unbiased for the trackers; the march and the light cache keep
+    /// trilinear lookups. false: trilinear everywhere.
+    bool stochastic_filter = false;
 };
 
 struct VolumeResult {

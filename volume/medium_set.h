@@ -2,10 +2,12 @@
 /// All media of a scene, queried together: overlapping media add their coefficients and mix
 /// their phase functions in proportion to their scattering coefficients.
 #include "core/color.h"
+#include "core/rng.h"
 #include "phase/phase_sample.h"
 #include "volume/medium.h"
 
 #include <array>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -124,8 +126,17 @@ class MediumSet {
         Rgb sigma_s{0.0f};     ///< 1/m (per unit density for a grid)
         bool other = false;    ///< another kind of medium: queried through coefficients()
         Bounds3 bounds_world;  ///< a grid's world box holding every non-zero density
+        /// The trackers' lookups in the grid pick one voxel with probability equal to its
+        /// trilinear weight (render.volume.density_filter "stochastic"; RayMediaQuery::density_in).
+        bool stochastic_filter = false;
     };
     const FastMedium& fast(uint32_t k) const { return m_fast[k]; }
+    /// render.volume.density_filter: "stochastic" (true) makes the trackers' lookups in every
+    /// grid medium one-voxel stochastic trilinear lookups (docs/volumes.md); false: trilinear.
+    void set_stochastic_filter(bool on) {
+        for (FastMedium& f : m_fast)
+            f.stochastic_filter = on && f.grid != nullptr;
+    }
     /// The medium when the set is exactly one grid medium, else null: the trackers then walk
     /// the grid's bricks lazily (volume/majorant_walk.h).
     const FastMedium* single_grid() const {
@@ -169,7 +180,10 @@ class RayMediaQuery {
                 continue;
             m_origin[k] = Vec3(m.world_to_index * Vec4(ray.origin, 1.0f));
             m_direction[k] = Vec3(m.world_to_index * Vec4(ray.direction, 0.0f));
+            m_stochastic = m_stochastic || m.stochastic_filter;
         }
+        if (m_stochastic)
+            m_seed = stochastic_seed(ray);
     }
 
     /// Density of grid medium k at distance t (0 for a homogeneous medium).
@@ -180,7 +194,12 @@ class RayMediaQuery {
 
     /// Density of grid medium k at distance t, a point inside `brick` of its grid (a walk's
     /// visit names it): no brick-table read.
+    /// With the medium's stochastic_filter set: one voxel picked with probability equal to its
+    /// trilinear weight (DensityGrid::density_in_stochastic), unbiased for the trilinear value.
     float density_in(uint32_t k, const BrickRef& brick, float t) const {
+        if (m_stochastic && m_media.fast(k).stochastic_filter)
+            return DensityGrid::density_in_stochastic(brick, m_origin[k] + t * m_direction[k],
+                                                      stochastic_bits(t));
         return DensityGrid::density_in(brick, m_origin[k] + t * m_direction[k]);
     }
 
@@ -207,10 +226,37 @@ class RayMediaQuery {
     }
 
   private:
+    /// The stochastic lookups' random bits come from a hash of the ray (origin and direction),
+    /// the lookup's distance t and its ordinal in this query: deterministic for a given path
+    /// (images do not depend on the thread count), and as random as the path's own numbers
+    /// (the trackers' distances are drawn from the sampler; the ordinal separates lookups at
+    /// the same t). No generator is threaded through the trackers' signatures.
+    static uint64_t stochastic_seed(const Ray& ray) {
+        uint32_t b[6];
+        std::memcpy(b, &ray.origin[0], sizeof(float));
+        std::memcpy(b + 1, &ray.origin[1], sizeof(float));
+        std::memcpy(b + 2, &ray.origin[2], sizeof(float));
+        std::memcpy(b + 3, &ray.direction[0], sizeof(float));
+        std::memcpy(b + 4, &ray.direction[1], sizeof(float));
+        std::memcpy(b + 5, &ray.direction[2], sizeof(float));
+        uint64_t h = 0x2545f4914f6cdd1dULL;
+        for (uint32_t x : b)
+            h = mix64(h ^ x);
+        return h;
+    }
+    uint64_t stochastic_bits(float t) const {
+        uint32_t tb = 0;
+        std::memcpy(&tb, &t, sizeof(float));
+        return mix64(m_seed ^ mix64((static_cast<uint64_t>(tb) << 32) | m_lookups++));
+    }
+
     const MediumSet& m_media;
     Ray m_ray;
     Vec3 m_origin[kMaxMedia];
     Vec3 m_direction[kMaxMedia];
+    bool m_stochastic = false;
+    uint64_t m_seed = 0;
+    mutable uint32_t m_lookups = 0;
 };
 
 }  // namespace kasumi

@@ -51,18 +51,10 @@ class DensityGrid {
 
     /// Trilinear density at an index-space point; 0 outside the stored region. Never throws.
     float density(const Vec3& p_index) const {
-        const Vec3 q = p_index - m_origin_f;
-        // floor(q) >= 0 iff q >= 0, and floor(q) < n iff q < n for an integer n; in that range
-        // the integer conversion (truncation) is the floor, without a rounding-mode dance.
-        if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < m_cells_f.x && q.y < m_cells_f.y &&
-              q.z < m_cells_f.z))
-            return 0.0f;
-        const IVec3 c(q);
-        const int32_t brick = m_brick_index[brick_slot(c >> 3)];
-        if (brick < 0)
-            return 0.0f;
-        return trilinear(&m_voxels[static_cast<size_t>(brick) * kBrickVoxels], c & (kBrick - 1),
-                         q - Vec3(c));
+        IVec3 l;
+        Vec3 f;
+        const float* brick = locate(p_index, l, f);
+        return brick != nullptr ? trilinear(brick, l, f) : 0.0f;
     }
 
     /// One coordinate of a lookup point as density() splits it, for a caller that looks up many
@@ -134,6 +126,29 @@ class DensityGrid {
         return trilinear(b.voxels, l, q - Vec3(l));
     }
 
+    /// Stochastic (one-voxel) trilinear filtering (Pharr, Wronski, Salvi & Fajardo 2024,
+    /// "Filtering After Shading With Stochastic Texture Filtering"): one of the 8 voxels of the
+    /// trilinear cell density_in(b, p_index) reads, voxel c picked with probability equal to its
+    /// trilinear weight, so E[density_in_stochastic] = density_in over uniform `bits`. Per axis
+    /// a, the upper voxel is taken when 21 bits of `bits` (a uniform in [0, 1) on a 2^-21 grid)
+    /// fall below the fraction f_a: each weight is off by less than 2^-21, a bias below
+    /// 3 * 2^-21 of the cell's largest voxel difference. The value is a voxel of the cell, so it
+    /// lies within the brick's (and the cell's) bounds like the trilinear one; a fraction of 0
+    /// (a point on a cell face) never picks the far voxel. Never throws.
+    static float density_in_stochastic(const BrickRef& b, const Vec3& p_index, uint64_t bits) {
+        const Vec3 q = glm::clamp(p_index - b.lower, Vec3(0.0f), Vec3(static_cast<float>(kBrick)));
+        const IVec3 l = glm::min(IVec3(q), IVec3(kBrick - 1));
+        return pick_voxel(b.voxels, l, q - Vec3(l), bits);
+    }
+    /// density() filtered stochastically (density_in_stochastic): unbiased for density() over
+    /// uniform `bits`. 0 outside the stored region. Never throws.
+    float density_stochastic(const Vec3& p_index, uint64_t bits) const {
+        IVec3 l;
+        Vec3 f;
+        const float* brick = locate(p_index, l, f);
+        return brick != nullptr ? pick_voxel(brick, l, f, bits) : 0.0f;
+    }
+
     /// Walks the index-space ray o + t d, t in [t0, t1], in order through the non-empty bricks
     /// (3D DDA over bricks, Amanatides & Woo 1987), calling
     /// visit(const BrickSpan& span, const BrickRef& brick) for each. Stops, returning false, as
@@ -159,6 +174,24 @@ class DensityGrid {
   private:
     friend class DensityGridBuilder;  // volume/grid/density_grid_build.h: parallel construction
 
+    /// The stored voxels of the brick holding index-space point p_index, with the local index l
+    /// of its cell and the fractions f within it; null (l, f untouched) outside the stored
+    /// region or in an empty brick.
+    const float* locate(const Vec3& p_index, IVec3& l, Vec3& f) const {
+        const Vec3 q = p_index - m_origin_f;
+        // floor(q) >= 0 iff q >= 0, and floor(q) < n iff q < n for an integer n; in that range
+        // the integer conversion (truncation) is the floor, without a rounding-mode dance.
+        if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < m_cells_f.x && q.y < m_cells_f.y &&
+              q.z < m_cells_f.z))
+            return nullptr;
+        const IVec3 c(q);
+        const int32_t brick = m_brick_index[brick_slot(c >> 3)];
+        if (brick < 0)
+            return nullptr;
+        l = c & (kBrick - 1);
+        f = q - Vec3(c);
+        return &m_voxels[static_cast<size_t>(brick) * kBrickVoxels];
+    }
     /// Prefetches the cache lines of the trilinear cell whose voxel (0, 0, 0) is at v: its four
     /// x-rows (two voxels each) at +0, +dy, +dz and +dy+dz.
     static void prefetch_cell(const float* v) {
@@ -185,6 +218,16 @@ class DensityGrid {
         const float y0 = x00 + f.y * (x10 - x00);
         const float y1 = x01 + f.y * (x11 - x01);
         return y0 + f.z * (y1 - y0);
+    }
+    /// The voxel of the cell at local index l that a stochastic trilinear lookup at fractions f
+    /// takes with 63 random bits (density_in_stochastic).
+    static float pick_voxel(const float* brick, IVec3 l, Vec3 f, uint64_t bits) {
+        constexpr uint64_t kMask = (uint64_t{1} << 21) - 1;
+        constexpr float kUnit = 1.0f / static_cast<float>(uint64_t{1} << 21);
+        const int ux = static_cast<float>(bits & kMask) * kUnit < f.x;
+        const int uy = static_cast<float>((bits >> 21) & kMask) * kUnit < f.y;
+        const int uz = static_cast<float>((bits >> 42) & kMask) * kUnit < f.z;
+        return brick[(l.x + ux) + kStored * ((l.y + uy) + kStored * (l.z + uz))];
     }
     /// trilinear() at the cell whose voxel (0, 0, 0) is at v, without the interpolation along
     /// the axes in `Flat` (their fraction is 0): the same operations on the rest, so the same
