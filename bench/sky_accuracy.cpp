@@ -1,46 +1,28 @@
 // Fast sky: accuracy against the reference and frame time in one table (issue #22, part 3).
-// Per sun elevation:
-//   psnr_dB       PSNR of luminance over the dome: 10 log10(peak² / MSE), peak the largest
-//                 reference luminance over the dome's directions (the sun's disc left out), MSE
-//                 the mean squared difference fast - reference with the reference's own noise
-//                 taken out: the reference is two independent halves A and B of its paths, and
-//                 E[(fast - (A + B)/2)²] = error² + E[(A - B)²] / 4 (as bench/vdb_image_compare
-//                 does for images), so MSE = raw MSE - mean((A - B)²) / 4.
-//   raw_dB        the same without the noise taken out; noise_dB the reference noise's own
-//                 PSNR (10 log10(peak² / (mean((A - B)²) / 4))): the measurement is trustworthy
-//                 where noise_dB is well above psnr_dB.
-//   single_dB     single scattering alone: the fast tables without multiple scattering against
-//                 the deterministic 1-order reference (the same peak): the tables' and the
-//                 quadrature's error without the multiple-scattering approximation.
-//   march_dB      the fast sky marched per direction (SkyLuts::march, 160 nodes) instead of
-//                 read from the sky-view table: the table's own interpolation error is the
-//                 difference between march_dB and psnr_dB.
-//   signed_%      mean of (fast - reference) / reference over the dome (bias).
-//   frame_s       median wall time (and CPU time) of the 1280 x 720 frame of --scene with its
-//                 sun at that elevation (scene load, sky tables, render; no image written).
-// The dome: an equal-area grid over the upper hemisphere on the sun's side of its vertical plane
-// (the sky is symmetric about it): `rings` rings with sin(elevation) = (i + 0.5) / rings and
-// `azimuths` azimuths (j + 0.5) 180 / azimuths from the sun. Camera 1.5 m above the ground of
-// the default (Bruneton 2017) atmosphere at 680, 550, 440 nm.
+// Per sun elevation, the PSNRs of sky/sky_dome_psnr.h:
+//   psnr_dB    PSNR of luminance over the dome, the reference's own noise taken out (two halves);
+//   raw_dB     the same with the noise left in; noise_dB the reference noise's own PSNR (the
+//              measurement is trustworthy where noise_dB is well above psnr_dB);
+//   single_dB  single scattering alone (fast tables without multiple scattering against the
+//              deterministic 1-order reference, the same peak);
+//   march_dB   marched per direction (160 nodes) instead of read from the sky-view table;
+//   signed_%   mean of (fast - reference) / reference over the dome (bias);
+//   frame_s    median wall and CPU time of the 1280 x 720 frame of --scene with its sun at
+//              that elevation (scene load, sky tables, render; no image written).
 //   sky_accuracy [--suns LIST] [--rings N] [--azimuths N] [--paths N] [--orders N]
 //                [--reps N] [--scene S] [--cache DIR|none] [--no-frame]
 #include "gi/gi.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
-#include "sky/atmosphere_json.h"
-#include "sky/sky_luts.h"
-#include "sky/sky_reference.h"
+#include "sky/sky_dome_psnr.h"
 
 #include <sys/resource.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -68,81 +50,11 @@ double median(std::vector<double> v) {
 
 struct Options {
     std::vector<double> suns{2.0, 10.0, 30.0, 60.0, -2.0, -4.0};
-    int rings = 12, azimuths = 16, paths = 1024, orders = 6, reps = 3;
-    int view_steps = 64, sun_steps = 24;
+    DomePsnrOptions dome;
+    int reps = 3;
     std::string scene = "data/scenes/sunset.json";
-    std::string cache = "/tmp/kasumi_sky_accuracy";
     bool frame = true;
 };
-
-std::vector<DVec3> dome(const Options& o) {
-    std::vector<DVec3> dirs;
-    for (int i = 0; i < o.rings; ++i) {
-        const double elev_deg = std::asin((i + 0.5) / o.rings) * 180.0 / kPiD;
-        for (int j = 0; j < o.azimuths; ++j)
-            dirs.push_back(sun_direction(elev_deg, (j + 0.5) * 180.0 / o.azimuths));
-    }
-    return dirs;
-}
-
-std::shared_ptr<const SkyScene> make_sky(const Options& o, double sun_deg, int orders) {
-    const std::vector<double> nm{680.0, 550.0, 440.0};
-    SunDesc sun;
-    sun.elevation_deg = sun_deg;
-    sun.azimuth_deg = 0.0;
-    SkySettings settings;
-    settings.mode = SkyMode::Reference;
-    settings.orders = orders;
-    settings.view_steps = o.view_steps;
-    settings.sun_steps = o.sun_steps;
-    return make_sky_scene(default_earth_atmosphere(nm, nm), sun, settings);
-}
-
-const DVec3 kCamera(0.0, 1.5, 0.0);
-
-/// Reference luminance per direction, the two halves of the paths (A: paths [0, P/2), B: the
-/// rest); read from / written to the cache (its name holds every parameter of the reference).
-void reference(const Options& o, double sun_deg, const std::vector<DVec3>& dirs,
-               std::vector<double>& half_a, std::vector<double>& half_b) {
-    std::ostringstream name;
-    name << o.cache << "/ref_sun" << sun_deg << "_r" << o.rings << "_a" << o.azimuths << "_p"
-         << o.paths << "_o" << o.orders << "_v" << o.view_steps << "_s" << o.sun_steps << ".txt";
-    half_a.assign(dirs.size(), 0.0);
-    half_b.assign(dirs.size(), 0.0);
-    if (o.cache != "none") {
-        std::ifstream in(name.str());
-        size_t k = 0;
-        while (k < dirs.size() && in >> half_a[k] >> half_b[k])
-            ++k;
-        if (k == dirs.size())
-            return;
-    }
-    const auto sky = make_sky(o, sun_deg, o.orders);
-    const int half = std::max(1, o.paths / 2);
-    tbb::parallel_for(0, static_cast<int>(dirs.size()), [&](int k) {
-        double sum[2] = {0.0, 0.0};
-        for (int p = 0; p < 2 * half; ++p) {
-            Pcg32 rng(static_cast<uint64_t>(p) * 7919u + 17u, static_cast<uint64_t>(k));
-            sum[p / half] +=
-                luminance(sky->to_rgb(reference_sky(*sky, kCamera, dirs[static_cast<size_t>(k)],
-                                                    1e30, false, o.orders, rng)
-                                          .radiance));
-        }
-        half_a[static_cast<size_t>(k)] = sum[0] / half;
-        half_b[static_cast<size_t>(k)] = sum[1] / half;
-    });
-    if (o.cache != "none") {
-        std::filesystem::create_directories(o.cache);
-        std::ofstream out(name.str());
-        out.precision(17);
-        for (size_t k = 0; k < dirs.size(); ++k)
-            out << half_a[k] << ' ' << half_b[k] << '\n';
-    }
-}
-
-double psnr(double peak, double mse) {
-    return mse > 0.0 ? 10.0 * std::log10(peak * peak / mse) : 999.0;
-}
 
 struct Row {
     double psnr_db = 0.0, raw_db = 0.0, noise_db = 0.0, single_db = 0.0, march_db = 0.0;
@@ -150,50 +62,14 @@ struct Row {
 };
 
 Row measure(const Options& o, double sun_deg) {
-    const std::vector<DVec3> dirs = dome(o);
-    std::vector<double> a, b;
-    reference(o, sun_deg, dirs, a, b);
-    const auto sky = make_sky(o, sun_deg, o.orders);
-    SkyLuts luts(*sky);
-    luts.build_sky_view(*sky, kCamera);
-    SkyLuts single(luts);
-    single.disable_multiple_scattering();
-    single.build_sky_view(*sky, kCamera);
-    const auto sky_single = make_sky(o, sun_deg, 1);
-    const size_t n = dirs.size();
-    std::vector<double> fast(n), marched(n), fast_single(n), ref_single(n);
-    tbb::parallel_for(0, static_cast<int>(n), [&](int kk) {
-        const size_t k = static_cast<size_t>(kk);
-        Bands l{}, t{};
-        luts.sky_view(*sky, dirs[k], l);
-        fast[k] = luminance(sky->to_rgb(l));
-        luts.march(*sky, kCamera, dirs[k], 1e30, 160, l, t);
-        marched[k] = luminance(sky->to_rgb(l));
-        single.sky_view(*sky, dirs[k], l);
-        fast_single[k] = luminance(sky->to_rgb(l));
-        Pcg32 rng(1, 1);
-        ref_single[k] = luminance(sky->to_rgb(
-            reference_sky(*sky_single, kCamera, dirs[k], 1e30, false, 1, rng).radiance));
-    });
-    double peak = 0.0, se = 0.0, noise = 0.0, se_single = 0.0, se_march = 0.0, signed_sum = 0.0;
-    for (size_t k = 0; k < n; ++k) {
-        const double ref = 0.5 * (a[k] + b[k]);
-        peak = std::max(peak, ref);
-        se += (fast[k] - ref) * (fast[k] - ref);
-        se_march += (marched[k] - ref) * (marched[k] - ref);
-        noise += (a[k] - b[k]) * (a[k] - b[k]) / 4.0;
-        se_single += (fast_single[k] - ref_single[k]) * (fast_single[k] - ref_single[k]);
-        if (ref > 0.0)
-            signed_sum += (fast[k] - ref) / ref;
-    }
-    const double dn = static_cast<double>(n);
+    const DomePsnr p = dome_psnr(sun_deg, o.dome);
     Row row;
-    row.psnr_db = psnr(peak, std::max(0.0, se - noise) / dn);
-    row.raw_db = psnr(peak, se / dn);
-    row.noise_db = psnr(peak, noise / dn);
-    row.single_db = psnr(peak, se_single / dn);
-    row.march_db = psnr(peak, std::max(0.0, se_march - noise) / dn);
-    row.signed_rel = signed_sum / dn;
+    row.psnr_db = p.psnr_db;
+    row.raw_db = p.raw_db;
+    row.noise_db = p.noise_db;
+    row.single_db = p.single_db;
+    row.march_db = p.march_db;
+    row.signed_rel = p.signed_rel;
     if (o.frame) {
         std::vector<double> wall, cpu;
         std::ostringstream value;
@@ -227,6 +103,7 @@ std::vector<double> parse_list(const std::string& text) {
 
 int main(int argc, char** argv) {
     Options o;
+    o.dome.cache = "/tmp/kasumi_sky_accuracy";
     const char* usage =
         "usage: sky_accuracy [--suns LIST] [--rings N] [--azimuths N] [--paths N] [--orders N] "
         "[--view-steps N] [--sun-steps N] [--reps N] [--scene S] [--cache DIR|none] "
@@ -250,23 +127,23 @@ int main(int argc, char** argv) {
         if (key == "--suns")
             o.suns = parse_list(value);
         else if (key == "--rings")
-            o.rings = n;
+            o.dome.rings = n;
         else if (key == "--azimuths")
-            o.azimuths = n;
+            o.dome.azimuths = n;
         else if (key == "--paths")
-            o.paths = std::max(2, n);
+            o.dome.paths = std::max(2, n);
         else if (key == "--orders")
-            o.orders = n;
+            o.dome.orders = n;
         else if (key == "--view-steps")
-            o.view_steps = n;
+            o.dome.view_steps = n;
         else if (key == "--sun-steps")
-            o.sun_steps = n;
+            o.dome.sun_steps = n;
         else if (key == "--reps")
             o.reps = n;
         else if (key == "--scene")
             o.scene = value;
         else if (key == "--cache")
-            o.cache = value;
+            o.dome.cache = value == "none" ? "" : value;
         else {
             std::fprintf(stderr, "unknown option %s\n%s", key.c_str(), usage);
             return 2;
@@ -275,8 +152,8 @@ int main(int argc, char** argv) {
     std::printf(
         "dome: %d x %d directions (equal area, sun's half); reference: %d orders, %d "
         "paths in two halves, %d view x %d sun nodes; frame: %s\n",
-        o.rings, o.azimuths, o.orders, o.paths, o.view_steps, o.sun_steps,
-        o.frame ? o.scene.c_str() : "not timed");
+        o.dome.rings, o.dome.azimuths, o.dome.orders, o.dome.paths, o.dome.view_steps,
+        o.dome.sun_steps, o.frame ? o.scene.c_str() : "not timed");
     std::printf(
         "sun_deg  psnr_dB  raw_dB  noise_dB  single_dB  march_dB  signed_%%  "
         "frame_wall_s  frame_cpu_s\n");
