@@ -11,15 +11,13 @@
 //              that elevation (scene load, sky tables, render; no image written).
 //   sky_accuracy [--suns LIST] [--rings N] [--azimuths N] [--paths N] [--orders N]
 //                [--reps N] [--scene S] [--cache DIR|none] [--no-frame]
+#include "bench/bench_timing.h"
 #include "gi/gi.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "sky/sky_dome_psnr.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,23 +28,6 @@
 using namespace kasumi;
 
 namespace {
-
-double cpu_seconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-double wall_seconds() {
-    using Clock = std::chrono::steady_clock;
-    return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 struct Options {
     std::vector<double> suns{2.0, 10.0, 30.0, 60.0, -2.0, -4.0};
