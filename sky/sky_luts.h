@@ -3,7 +3,7 @@
 /// Atmosphere Rendering Technique", Computer Graphics Forum 39(4)):
 ///  - transmittance to the top of the atmosphere T(r, mu), 256 x 64, Bruneton's 2017
 ///    parametrisation (exact at the texel centres, bilinear between);
-///  - multiple scattering Psi_ms(r, mu_s), 64 x 32: the light scattered into orders 2 and up
+///  - multiple scattering Psi_ms(r, mu_s), 128 x 32: the light scattered into orders 2 and up
 ///    with an isotropic phase (Hillaire eqs. 5-10), its orders iterated through the table (as
 ///    in Bruneton & Neyret 2008) instead of Hillaire's local geometric series, which fails in
 ///    twilight; with it, the sky's irradiance on the ground per sun cosine;
@@ -77,7 +77,7 @@ class SkyLuts {
     /// Segments shorter than this (metres) are integrated in closed form from one node.
     static constexpr double kShortSegmentM = 1000.0;
     static constexpr int kTransmittanceW = 256, kTransmittanceH = 64;
-    static constexpr int kMultipleW = 64, kMultipleH = 32;
+    static constexpr int kMultipleW = 128, kMultipleH = 32;
     /// Orders of the multiple-scattering table computed by iteration (2 to kMultipleOrders + 1
     /// scattering events), then a geometric tail.
     static constexpr int kMultipleOrders = 4;
