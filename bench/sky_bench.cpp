@@ -7,6 +7,7 @@
 // only the CPU time is comparable between runs.
 //   sky_bench [--scene S] [--sequence S] [--reps N] [--frames N] [--paths N] [--out DIR]
 //             [--aovs all|none|LIST] [--compression zip|piz|rle|none] [--write-queue N]
+#include "bench/bench_timing.h"
 #include "gi/gi.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
@@ -15,10 +16,7 @@
 #include "sky/sky_luts.h"
 #include "sky/sky_reference.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -29,23 +27,6 @@
 using namespace kasumi;
 
 namespace {
-
-double cpu_seconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-double wall_seconds() {
-    using Clock = std::chrono::steady_clock;
-    return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /// Max and mean relative luminance error of the fast sky against the reference (6 orders,
 /// `paths` Monte Carlo paths per direction) over 6 elevations x 6 azimuths from the sun.

@@ -24,6 +24,29 @@ double distance_to_top(double r, double mu, double rt) {
     return std::max(0.0, -r * mu + std::sqrt(std::max(0.0, disc)));
 }
 
+/// Fraction of the sun's disc above the planet's horizon seen from radius r with the sun's
+/// centre at zenith cosine mu_s, and the cosine of the horizon's elevation there (its sine is
+/// -sqrt(1 - (rg/r)²)): disc_fraction_above(asin(mu_s) + acos(rg / r), radius). The disc is
+/// whole (1) or gone (0) unless mu_s lies within the sines of horizon +- radius (written with
+/// sin(a +- b) of the horizon's cosine and sine: no inverse trigonometry for the nodes that are
+/// not in the band, nearly all of them); a margin of 1e-9 in the cosine leaves the borderline
+/// cases to the exact formula.
+double sun_disc_fraction(double r, double mu_s, double rg, double radius_rad, double& sin_horizon) {
+    const double cos_h = std::min(1.0, rg / r);
+    sin_horizon = -std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
+    const double cos_rad = std::cos(radius_rad), sin_rad = std::sin(radius_rad);
+    const double upper = sin_horizon * cos_rad + cos_h * sin_rad;  // sin(horizon + radius)
+    if (mu_s > upper + 1e-9)
+        return 1.0;
+    const double lower = sin_horizon * cos_rad - cos_h * sin_rad;  // sin(horizon - radius)
+    // sin is increasing on [-pi/2, pi/2]: valid while horizon - radius > -pi/2, i.e.
+    // cos_h > sin(radius) (the horizon is not near the nadir).
+    if (cos_h > sin_rad && mu_s < lower - 1e-9)
+        return 0.0;
+    return disc_fraction_above(std::asin(std::clamp(mu_s, -1.0, 1.0)) + std::acos(cos_h),
+                               radius_rad);
+}
+
 }  // namespace
 
 void SkyLuts::lookup(const std::vector<float>& table, int w, int h, double u, double v,
@@ -114,6 +137,8 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
     // (b), T sigma_s dt per band split into Rayleigh and Mie (the first order's phases).
     struct Node {
         double r, a, b;
+        int y0;     ///< the table row below the node's radius (its bilinear tap in r, which
+        double fy;  ///< stays for every order and sun cosine)
     };
     struct DirRay {
         std::vector<Node> nodes;
@@ -144,7 +169,9 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
             const double r =
                 std::sqrt(t * t + 2.0 * t * (m_rg + h) * ray.cos_t + (m_rg + h) * (m_rg + h));
             const AtmosphereCoefficients co = atmosphere_coefficients(a, r - m_rg);
-            ray.nodes.push_back({r, t * ray.sin_t / r, (m_rg + h + t * ray.cos_t) / r});
+            const double y = std::clamp(multiple_v(r) * H - 0.5, 0.0, H - 1.0);
+            const int y0 = std::min(static_cast<int>(y), H - 2);
+            ray.nodes.push_back({r, t * ray.sin_t / r, (m_rg + h + t * ray.cos_t) / r, y0, y - y0});
             for (size_t b = 0; b < nb; ++b) {
                 const double tr = std::exp(-(tau[b] + 0.5 * co.sigma_t[b] * dt));
                 ray.w_rayleigh.push_back(static_cast<float>(tr * co.sigma_s_rayleigh[b] * dt));
@@ -162,16 +189,15 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
     });
     // Sun transmittance at radius r, sun cosine mu_s there (disc fraction above the horizon).
     const auto sun_t = [&](double r, double mu_s, double* out) {
-        const double horizon_elev = -std::acos(std::min(1.0, m_rg / r));
-        const double fraction = disc_fraction_above(
-            std::asin(std::clamp(mu_s, -1.0, 1.0)) - horizon_elev, sky.sun_radius_rad);
+        double sin_horizon = 0.0;
+        const double fraction = sun_disc_fraction(r, mu_s, m_rg, sky.sun_radius_rad, sin_horizon);
         if (fraction <= 0.0) {
             for (size_t b = 0; b < nb; ++b)
                 out[b] = 0.0;
             return;
         }
         Bands t;
-        transmittance(r, std::max(mu_s, std::sin(horizon_elev)), t);
+        transmittance(r, std::max(mu_s, sin_horizon), t);
         for (size_t b = 0; b < nb; ++b)
             out[b] = t[b] * fraction;
     };
@@ -184,12 +210,10 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
         size_t offset[4];
         double weight[4];
     };
-    const auto g_tap = [&](double r, double mu_s) {
+    const auto g_tap = [&](const Node& node, double mu_s) {
         const double x = std::clamp(multiple_u(mu_s) * W - 0.5, 0.0, W - 1.0);
-        const double y = std::clamp(multiple_v(r) * H - 0.5, 0.0, H - 1.0);
-        const int x0 = std::min(static_cast<int>(x), W - 2),
-                  y0 = std::min(static_cast<int>(y), H - 2);
-        const double fx = x - x0, fy = y - y0;
+        const int x0 = std::min(static_cast<int>(x), W - 2), y0 = node.y0;
+        const double fx = x - x0, fy = node.fy;
         Tap tap;
         const auto offset = [&](int xx, int yy) { return (static_cast<size_t>(yy) * W + xx) * nb; };
         tap.offset[0] = offset(x0, y0);
@@ -240,7 +264,7 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
                                          ray.w_mie[n * nb + b] * p_m) *
                                         ts[b];
                         } else {
-                            const Tap tap = g_tap(node.r, mu_y);
+                            const Tap tap = g_tap(node, mu_y);
                             for (size_t b = 0; b < nb; ++b) {
                                 double gy = 0.0;
                                 for (int q = 0; q < 4; ++q)
@@ -317,16 +341,15 @@ void SkyLuts::sun_transmittance(const SkyScene& sky, const DVec3& p, Bands& out)
     const DVec3 up_vec = p - sky.atmosphere.center();
     const double r = glm::length(up_vec);
     const DVec3 up = up_vec / r;
-    const double horizon_elev = -std::acos(std::min(1.0, m_rg / r));
     const double mu_s = std::clamp(glm::dot(up, sky.sun_direction), -1.0, 1.0);
-    const double sun_elev = std::asin(mu_s);
-    const double fraction = disc_fraction_above(sun_elev - horizon_elev, sky.sun_radius_rad);
+    double sin_horizon = 0.0;
+    const double fraction = sun_disc_fraction(r, mu_s, m_rg, sky.sun_radius_rad, sin_horizon);
     if (fraction <= 0.0) {
         for (int i = 0; i < m_bands; ++i)
             out[i] = 0.0;
         return;
     }
-    transmittance(r, std::max(mu_s, std::sin(horizon_elev)), out);
+    transmittance(r, std::max(mu_s, sin_horizon), out);
     for (int i = 0; i < m_bands; ++i)
         out[i] *= fraction;
 }
@@ -361,7 +384,7 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
     Bands p_r{};
     rayleigh_phase_bands(a, mu, p_r);
     const double p_m = eval_precise(a.mie_phase, mu);
-    Bands tau{}, ts, ms;
+    Bands ts, ms;
     if (t_end - t_enter < kShortSegmentM && !(ground && t_max >= t_exit)) {
         // Short segment (aerial perspective over a scene) in one piece by Simpson's rule on
         // its ends and middle: optical depth tau = L (sigma_0 + 4 sigma_m + sigma_1) / 6, and
@@ -434,6 +457,29 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
         }
         return;
     }
+    ScatteringTerms terms;
+    march_terms(sky, p, d, t_max, steps, terms);
+    for (int i = 0; i < n; ++i) {
+        radiance[i] = p_r[i] * terms.rayleigh[i] + p_m * terms.mie[i] + terms.rest[i];
+        transmittance_out[i] = terms.transmittance[i];
+    }
+}
+
+void SkyLuts::march_terms(const SkyScene& sky, const DVec3& p, const DVec3& d, double t_max,
+                          int steps, ScatteringTerms& out) const {
+    const Atmosphere& a = sky.atmosphere;
+    const int n = m_bands;
+    out = ScatteringTerms{};
+    for (int i = 0; i < n; ++i)
+        out.transmittance[i] = 1.0;
+    double t_enter = 0.0, t_exit = 0.0;
+    bool ground = false;
+    if (!atmosphere_segment(a, p, d, t_enter, t_exit, ground))
+        return;
+    const double t_end = std::min(t_exit, t_max);
+    if (!(t_end > t_enter))
+        return;
+    Bands tau{}, ts, ms;
     for_each_sky_node(a, p, d, t_enter, t_end, steps, [&](double t, double dt) {
         const DVec3 x = p + t * d;
         const DVec3 up_vec = x - a.center();
@@ -442,15 +488,15 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
         sun_transmittance(sky, x, ts);
         multiple_scattering(r, glm::dot(up_vec / r, sky.sun_direction), ms);
         for (int i = 0; i < n; ++i) {
-            const double tr = std::exp(-(tau[i] + 0.5 * c.sigma_t[i] * dt));
-            radiance[i] += tr * dt *
-                           ((c.sigma_s_rayleigh[i] * p_r[i] + c.sigma_s_mie[i] * p_m) * ts[i] +
-                            (c.sigma_s_rayleigh[i] + c.sigma_s_mie[i]) * ms[i]);
+            const double w = std::exp(-(tau[i] + 0.5 * c.sigma_t[i] * dt)) * dt;
+            out.rayleigh[i] += w * c.sigma_s_rayleigh[i] * ts[i];
+            out.mie[i] += w * c.sigma_s_mie[i] * ts[i];
+            out.rest[i] += w * (c.sigma_s_rayleigh[i] + c.sigma_s_mie[i]) * ms[i];
             tau[i] += c.sigma_t[i] * dt;
         }
     });
     for (int i = 0; i < n; ++i)
-        transmittance_out[i] = std::exp(-tau[i]);
+        out.transmittance[i] = std::exp(-tau[i]);
     if (ground && t_max >= t_exit) {
         const DVec3 x = p + t_exit * d;
         const DVec3 nrm = glm::normalize(x - a.center());
@@ -460,9 +506,9 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
         // the multiple-scattering table), reflected by the Lambertian albedo.
         ground_sky_irradiance(glm::dot(nrm, sky.sun_direction), ms);
         for (int i = 0; i < n; ++i) {
-            radiance[i] +=
-                transmittance_out[i] * a.ground_albedo[i] / kPiD * (cos_s * ts[i] + ms[i]);
-            transmittance_out[i] = 0.0;
+            out.rest[i] +=
+                out.transmittance[i] * a.ground_albedo[i] / kPiD * (cos_s * ts[i] + ms[i]);
+            out.transmittance[i] = 0.0;
         }
     }
 }
@@ -471,7 +517,7 @@ void SkyLuts::build_sky_view(const SkyScene& sky, const DVec3& camera) {
     const size_t nb = static_cast<size_t>(m_bands);
     m_camera = camera;
     m_camera_r = sky.atmosphere.radius(camera);
-    m_sky_view.assign(static_cast<size_t>(kSkyViewW * kSkyViewH) * nb, 0.0f);
+    m_sky_view.assign(static_cast<size_t>(kSkyViewW * kSkyViewH) * 3 * nb, 0.0f);
     m_up = glm::normalize(camera - sky.atmosphere.center());
     // Frame: sun azimuth at u = 0. Projected sun direction (any if the sun is at the zenith).
     DVec3 forward = sky.sun_direction - glm::dot(sky.sun_direction, m_up) * m_up;
@@ -482,7 +528,7 @@ void SkyLuts::build_sky_view(const SkyScene& sky, const DVec3& camera) {
     m_side = glm::cross(m_up, m_forward);
     m_horizon = -std::acos(std::min(1.0, m_rg / m_camera_r));
     tbb::parallel_for(0, kSkyViewH, [&](int j) {
-        Bands radiance, transmittance_out;
+        ScatteringTerms terms;
         const double v = (j + 0.5) / kSkyViewH;
         double elev = 0.0;
         if (v >= 0.5) {
@@ -493,31 +539,54 @@ void SkyLuts::build_sky_view(const SkyScene& sky, const DVec3& camera) {
             elev = m_horizon - l * l * (m_horizon + 0.5 * kPiD);
         }
         for (int i = 0; i < kSkyViewW; ++i) {
-            const double az = 2.0 * kPiD * (i + 0.5) / kSkyViewW;
+            // Azimuth from the sun over [0, pi]: the other half is its mirror image.
+            const double az = kPiD * (i + 0.5) / kSkyViewW;
             const DVec3 d = std::cos(elev) * (std::cos(az) * m_forward + std::sin(az) * m_side) +
                             std::sin(elev) * m_up;
-            march(sky, camera, glm::normalize(d), 1e30, 40, radiance, transmittance_out);
-            float* out = &m_sky_view[(static_cast<size_t>(j) * kSkyViewW + i) * nb];
-            for (size_t b = 0; b < nb; ++b)
-                out[b] = static_cast<float>(radiance[b]);
+            march_terms(sky, camera, glm::normalize(d), 1e30, kSkyViewSteps, terms);
+            float* out = &m_sky_view[(static_cast<size_t>(j) * kSkyViewW + i) * 3 * nb];
+            for (size_t b = 0; b < nb; ++b) {
+                out[b] = static_cast<float>(terms.rayleigh[b]);
+                out[nb + b] = static_cast<float>(terms.mie[b]);
+                out[2 * nb + b] = static_cast<float>(terms.rest[b]);
+            }
         }
     });
 }
 
-void SkyLuts::sky_view(const SkyScene&, const DVec3& d, Bands& out) const {
+void SkyLuts::sky_view(const SkyScene& sky, const DVec3& d, Bands& out) const {
     const double elev = std::asin(std::clamp(glm::dot(d, m_up), -1.0, 1.0));
     double v = 0.0;
     if (elev >= m_horizon)
         v = 0.5 + 0.5 * std::sqrt((elev - m_horizon) / (0.5 * kPiD - m_horizon));
     else
         v = 0.5 - 0.5 * std::sqrt((m_horizon - elev) / (m_horizon + 0.5 * kPiD));
-    double az = std::atan2(glm::dot(d, m_side), glm::dot(d, m_forward));
-    if (az < 0.0)
-        az += 2.0 * kPiD;
-    double u = az / (2.0 * kPiD);
-    // Wrap in azimuth: interpolate across u = 0 / 1 by looking up the nearer edge column.
-    u = std::clamp(u, 0.5 / kSkyViewW, 1.0 - 0.5 / kSkyViewW);
-    lookup(m_sky_view, kSkyViewW, kSkyViewH, u, std::clamp(v, 0.0, 1.0), out);
+    // |azimuth| from the sun: the table covers [0, pi] (mirror symmetry); at both ends the
+    // sky's derivative in azimuth is zero, so the edge texels serve the half texel beyond.
+    const double az = std::abs(std::atan2(glm::dot(d, m_side), glm::dot(d, m_forward)));
+    const double u = std::clamp(az / kPiD, 0.5 / kSkyViewW, 1.0 - 0.5 / kSkyViewW);
+    const int nb = m_bands;
+    Bands terms[3];
+    const double x = std::clamp(u * kSkyViewW - 0.5, 0.0, kSkyViewW - 1.0);
+    const double y = std::clamp(std::clamp(v, 0.0, 1.0) * kSkyViewH - 0.5, 0.0, kSkyViewH - 1.0);
+    const int x0 = std::min(static_cast<int>(x), kSkyViewW - 2);
+    const int y0 = std::min(static_cast<int>(y), kSkyViewH - 2);
+    const double fx = x - x0, fy = y - y0;
+    const size_t stride = 3 * static_cast<size_t>(nb);
+    const float* t00 = &m_sky_view[(static_cast<size_t>(y0) * kSkyViewW + x0) * stride];
+    const float* t10 = t00 + stride;
+    const float* t01 = t00 + kSkyViewW * stride;
+    const float* t11 = t01 + stride;
+    for (int k = 0; k < 3 * nb; ++k) {
+        terms[k / nb][k % nb] =
+            (1 - fy) * ((1 - fx) * t00[k] + fx * t10[k]) + fy * ((1 - fx) * t01[k] + fx * t11[k]);
+    }
+    const double mu = glm::dot(d, sky.sun_direction);
+    Bands p_r{};
+    rayleigh_phase_bands(sky.atmosphere, mu, p_r);
+    const double p_m = eval_precise(sky.atmosphere.mie_phase, mu);
+    for (int i = 0; i < nb; ++i)
+        out[i] = p_r[i] * terms[0][i] + p_m * terms[1][i] + terms[2][i];
 }
 
 }  // namespace kasumi

@@ -7,8 +7,13 @@
 ///    with an isotropic phase (Hillaire eqs. 5-10), its orders iterated through the table (as
 ///    in Bruneton & Neyret 2008) instead of Hillaire's local geometric series, which fails in
 ///    twilight; with it, the sky's irradiance on the ground per sun cosine;
-///  - sky view for one camera altitude and sun, 192 x 108 in (azimuth from the sun, elevation
-///    with sqrt crowding at the horizon), marched with the two tables above.
+///  - sky view for one camera altitude and sun, 96 x 108 in (azimuth from the sun over [0, pi]:
+///    the sky is symmetric about the sun's vertical plane; elevation with sqrt crowding at the
+///    horizon), marched with the two tables above. Along a view ray the angle to the sun is
+///    constant, so the phases factor out of its integral: each texel holds Rayleigh and Mie
+///    single scattering without their phases and the rest (multiple scattering, the ground),
+///    and the lookup applies the direction's own phases (as sky/aerial_perspective.h does):
+///    the Mie forward peak is exact per pixel instead of interpolated between texels.
 /// Transmittance and multiple scattering depend on the atmosphere (at the render's wavelengths)
 /// and the sun's angular radius only, not on the sun's direction: they are built once and shared
 /// by copies of a SkyLuts (sequence/sequence_cache.h keeps them across the frames of a sequence);
@@ -43,6 +48,18 @@ class SkyLuts {
     /// Sky (and ground) radiance seen from the sky-view camera along d, without the sun disc.
     void sky_view(const SkyScene& sky, const DVec3& d, Bands& out) const;
 
+    /// The light scattered toward p along d, split by the phase that multiplies it (per band,
+    /// per unit TOA solar irradiance): Rayleigh and Mie single scattering without their phases,
+    /// and the rest (multiple scattering with its isotropic phase, the ground); radiance =
+    /// p_R(mu) rayleigh + p_M(mu) mie + rest with mu the cosine between d and the sun.
+    struct ScatteringTerms {
+        Bands rayleigh{}, mie{}, rest{}, transmittance{};
+    };
+    /// The terms along p + t d over [0, t_max] by `steps` nodes (the long-segment part of
+    /// march()); adds the ground if the segment reaches it.
+    void march_terms(const SkyScene& sky, const DVec3& p, const DVec3& d, double t_max, int steps,
+                     ScatteringTerms& out) const;
+
     /// In-scattering and transmittance along p + t d over [0, t_max] by `steps` nodes with the
     /// tables for the light (aerial perspective; also fills the sky-view table). Adds the
     /// ground if the segment reaches it.
@@ -64,7 +81,8 @@ class SkyLuts {
     /// Orders of the multiple-scattering table computed by iteration (2 to kMultipleOrders + 1
     /// scattering events), then a geometric tail.
     static constexpr int kMultipleOrders = 4;
-    static constexpr int kSkyViewW = 192, kSkyViewH = 108;
+    /// Sky view: azimuths over [0, pi], elevations, nodes per marched texel.
+    static constexpr int kSkyViewW = 96, kSkyViewH = 108, kSkyViewSteps = 40;
 
   private:
     void build_multiple_scattering(const SkyScene& sky);
@@ -83,7 +101,7 @@ class SkyLuts {
     std::shared_ptr<const std::vector<float>> m_transmittance;      ///< [y][x][band]
     std::shared_ptr<const std::vector<float>> m_multiple;           ///< [r][mu_s][band]
     std::shared_ptr<const std::vector<float>> m_ground_irradiance;  ///< [mu_s][band]
-    std::vector<float> m_sky_view;
+    std::vector<float> m_sky_view;  ///< [y][x][rayleigh bands, mie bands, rest bands]
 };
 
 }  // namespace kasumi
