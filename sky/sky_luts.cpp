@@ -362,6 +362,22 @@ void SkyLuts::ground_sky_irradiance(double mu_s, Bands& out) const {
     lookup(*m_ground_irradiance, kMultipleW, 1, multiple_u(mu_s), 0.5, out);
 }
 
+namespace {
+
+/// The stretch [t_enter, t_end] of the ray p + t d inside the air and before t_max, and where
+/// it leaves the air (t_exit; `ground`: by the ground). False when there is none, including a
+/// stretch that ends before it enters the air (a camera in space looking at something outside
+/// the atmosphere): no light, transmittance 1 (the closed forms would take a negative length).
+bool air_stretch(const Atmosphere& a, const DVec3& p, const DVec3& d, double t_max, double& t_enter,
+                 double& t_exit, double& t_end, bool& ground) {
+    if (!atmosphere_segment(a, p, d, t_enter, t_exit, ground))
+        return false;
+    t_end = std::min(t_exit, t_max);
+    return t_end > t_enter;
+}
+
+}  // namespace
+
 void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double t_max, int steps,
                     Bands& radiance, Bands& transmittance_out) const {
     const Atmosphere& a = sky.atmosphere;
@@ -370,15 +386,9 @@ void SkyLuts::march(const SkyScene& sky, const DVec3& p, const DVec3& d, double 
         radiance[i] = 0.0;
         transmittance_out[i] = 1.0;
     }
-    double t_enter = 0.0, t_exit = 0.0;
+    double t_enter = 0.0, t_exit = 0.0, t_end = 0.0;
     bool ground = false;
-    if (!atmosphere_segment(a, p, d, t_enter, t_exit, ground))
-        return;
-    const double t_end = std::min(t_exit, t_max);
-    // A segment that ends before it enters the air (a camera in space looking at something
-    // outside the atmosphere) holds none: no light, transmittance 1 (the closed form below
-    // would take its negative length).
-    if (!(t_end > t_enter))
+    if (!air_stretch(a, p, d, t_max, t_enter, t_exit, t_end, ground))
         return;
     const double mu = glm::dot(d, sky.sun_direction);
     Bands p_r{};
@@ -472,12 +482,9 @@ void SkyLuts::march_terms(const SkyScene& sky, const DVec3& p, const DVec3& d, d
     out = ScatteringTerms{};
     for (int i = 0; i < n; ++i)
         out.transmittance[i] = 1.0;
-    double t_enter = 0.0, t_exit = 0.0;
+    double t_enter = 0.0, t_exit = 0.0, t_end = 0.0;
     bool ground = false;
-    if (!atmosphere_segment(a, p, d, t_enter, t_exit, ground))
-        return;
-    const double t_end = std::min(t_exit, t_max);
-    if (!(t_end > t_enter))
+    if (!air_stretch(a, p, d, t_max, t_enter, t_exit, t_end, ground))
         return;
     Bands tau{}, ts, ms;
     for_each_sky_node(a, p, d, t_enter, t_end, steps, [&](double t, double dt) {
