@@ -154,7 +154,8 @@ void add_shadow_stages(const SceneDesc& scene, Plan& plan) {
          : object_space.empty()
              ? "no light has \"shadows\": \"object-space\""
              : "pass 1 from the light clips every box, quad and mesh triangle against the "
-               "polygons in front of it into lit and shadowed detail polygons (cached while "
+               "united shadows of the polygons in front of it (Weiler-Atherton) into lit and "
+               "shadowed detail polygons (cached while "
                "light and geometry stay); pass 2 finds the detail polygon under each visible "
                "point, no shadow ray (spheres are not tessellated: they receive and cast by "
                "shadow rays): " +
