@@ -37,20 +37,15 @@ struct Options {
     bool frame = true;
 };
 
+/// One sun elevation: the dome's accuracy and the frame's median times (seconds).
 struct Row {
-    double psnr_db = 0.0, raw_db = 0.0, noise_db = 0.0, single_db = 0.0, march_db = 0.0;
-    double signed_rel = 0.0, frame_wall = 0.0, frame_cpu = 0.0;
+    DomePsnr dome;
+    double frame_wall = 0.0, frame_cpu = 0.0;
 };
 
 Row measure(const Options& o, double sun_deg) {
-    const DomePsnr p = dome_psnr(sun_deg, o.dome);
     Row row;
-    row.psnr_db = p.psnr_db;
-    row.raw_db = p.raw_db;
-    row.noise_db = p.noise_db;
-    row.single_db = p.single_db;
-    row.march_db = p.march_db;
-    row.signed_rel = p.signed_rel;
+    row.dome = dome_psnr(sun_deg, o.dome);
     if (o.frame) {
         std::vector<double> wall, cpu;
         std::ostringstream value;
@@ -139,10 +134,11 @@ int main(int argc, char** argv) {
         "sun_deg  psnr_dB  raw_dB  noise_dB  single_dB  march_dB  signed_%%  "
         "frame_wall_s  frame_cpu_s\n");
     for (const double sun : o.suns) {
-        const Row r = measure(o, sun);
+        const Row row = measure(o, sun);
+        const DomePsnr& r = row.dome;
         std::printf("%7.1f  %7.2f  %6.2f  %8.2f  %9.2f  %8.2f  %+8.2f  %12.3f  %11.3f\n", sun,
                     r.psnr_db, r.raw_db, r.noise_db, r.single_db, r.march_db, 100.0 * r.signed_rel,
-                    r.frame_wall, r.frame_cpu);
+                    row.frame_wall, row.frame_cpu);
         std::fflush(stdout);
     }
     return 0;
