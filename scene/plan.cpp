@@ -65,6 +65,7 @@ std::string estimator_summary(const SceneDesc& scene) {
         case Estimator::ResidualRatio:
             text += ", residual ratio tracking against the minorant (unbiased)";
             break;
+        case Estimator::DebiasedMarch:
         case Estimator::UnbiasedMarch:
             text += homogeneous ? ", exact Beer-Lambert per stretch"
                                 : ", debiased jittered march against the minorant (unbiased, "
@@ -338,6 +339,13 @@ Plan make_plan(const SceneDesc& scene) {
                "column (step " +
                    std::to_string(volume.step_m) +
                    " m where the ray's fog is densest; unbiased), exact transmittance" +
+                   (plan.shadow_rays ? ", shadowed by surfaces" : "")
+         : volume.estimator == Estimator::DebiasedMarch && !multiple
+             ? "single scattering, debiased march (unbiased): fixed-step nodes (" +
+                   std::to_string(volume.step_m) +
+                   " m or step_voxels), camera transmittance debiased about the trapezoid, "
+                   "directional lights' shadows debiased about the light cache's depth "
+                   "(docs/volumes.md)" +
                    (plan.shadow_rays ? ", shadowed by surfaces" : "")
          : volume.estimator == Estimator::March && !multiple
              ? "single scattering, fixed-step march (" + std::to_string(volume.step_m) +

@@ -127,8 +127,8 @@ RenderSettings parse_render(const JsonNode& node) {
             const auto estimator = estimator_from_name(e->as_string());
             if (!estimator)
                 e->fail(
-                    "expected \"march\", \"delta\", \"ratio\", \"residual-ratio\" or "
-                    "\"unbiased-march\"");
+                    "expected \"march\", \"delta\", \"ratio\", \"residual-ratio\", "
+                    "\"unbiased-march\" or \"debiased-march\"");
             render.volume.estimator = *estimator;
             render.volume.estimator_given = true;
         }

@@ -100,4 +100,33 @@ DVec3 debiased_exp(const std::vector<DVec3>& tau_hat) {
     return result;
 }
 
+DVec3 debiased_exp_about(const DVec3& pivot, const DVec3* tau_hat, int count) {
+    const int n = std::min(std::max(count, 0), kMaxSeriesOrder);
+    const auto& p = survival_table();
+    DVec3 result(0.0);
+    for (int c = 0; c < 3; ++c) {
+        bool finite = pivot[c] < HUGE_VAL;
+        for (int i = 0; i < n; ++i)
+            finite = finite && tau_hat[i][c] < HUGE_VAL;
+        const double weight = std::exp(-pivot[c]);
+        if (!finite || !(weight > 0.0))
+            continue;
+        // Elementary symmetric means, built one difference at a time (as in debiased_exp).
+        std::array<double, kMaxSeriesOrder + 1> m{};
+        m[0] = 1.0;
+        for (int i = 0; i < n; ++i) {
+            const double x = pivot[c] - tau_hat[i][c];
+            for (int k = i + 1; k >= 1; --k)
+                m[k] += (static_cast<double>(k) / (i + 1)) * (m[k - 1] * x - m[k]);
+        }
+        double series = 0.0, factorial = 1.0;
+        for (int k = 0; k <= n; ++k) {
+            factorial *= std::max(k, 1);
+            series += m[k] / (factorial * p[k]);
+        }
+        result[c] = weight * series;
+    }
+    return result;
+}
+
 }  // namespace kasumi

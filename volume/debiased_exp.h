@@ -38,4 +38,16 @@ int sample_series_order(float u);
 /// is 0. Never throws, never NaN for finite or +inf input.
 DVec3 debiased_exp(const std::vector<DVec3>& tau_hat);
 
+/// The debiased exp(-tau) per channel about a pivot that is not one of the estimates:
+///   exp(-pivot) sum_{k=0..N} m_k / (k! P(N >= k)),
+/// m_k the elementary symmetric mean of the k-fold products of the differences pivot - tau^_i
+/// over the N = `count` estimates at tau_hat (N drawn by sample_series_order). Unbiased for
+/// exp(-tau) when the pivot is fixed or independent of the estimates and the estimates are
+/// independent and unbiased: E[m_k] = (pivot - tau)^k, and the series of exp about the pivot
+/// (Kettunen et al. 2021, eq. 8) converges for any pivot, so any control (a biased march, a
+/// cached depth) serves; only the variance depends on how close it is. N = 0 costs no estimate:
+/// exp(-pivot). A channel whose pivot or an estimate is +inf is 0. Never NaN for finite or +inf
+/// input.
+DVec3 debiased_exp_about(const DVec3& pivot, const DVec3* tau_hat, int count);
+
 }  // namespace kasumi

@@ -25,6 +25,9 @@ enum class Estimator {
     Ratio,          ///< ratio tracking (Novák et al. 2014): unbiased
     ResidualRatio,  ///< residual ratio tracking with the minorant as control: unbiased
     UnbiasedMarch,  ///< debiased jittered march (Kettunen et al. 2021): unbiased, signed
+    /// unbiased-march for transmittance; with integrator "single", the camera ray marched and
+    /// debiased about the march and the light cache (volume/debiased_march_single.h): unbiased
+    DebiasedMarch,
 };
 
 /// How the path tracer samples free flights in media (render.volume.free_flight).

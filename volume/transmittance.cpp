@@ -130,13 +130,16 @@ const char* estimator_name(Estimator estimator) {
             return "residual-ratio";
         case Estimator::UnbiasedMarch:
             return "unbiased-march";
+        case Estimator::DebiasedMarch:
+            return "debiased-march";
     }
     return "?";
 }
 
 std::optional<Estimator> estimator_from_name(const std::string& name) {
-    for (Estimator e : {Estimator::March, Estimator::Delta, Estimator::Ratio,
-                        Estimator::ResidualRatio, Estimator::UnbiasedMarch}) {
+    for (Estimator e :
+         {Estimator::March, Estimator::Delta, Estimator::Ratio, Estimator::ResidualRatio,
+          Estimator::UnbiasedMarch, Estimator::DebiasedMarch}) {
         if (name == estimator_name(e))
             return e;
     }
@@ -172,6 +175,7 @@ Rgb estimate_transmittance(const MediumSet& media, const Ray& ray, Estimator est
         case Estimator::ResidualRatio:
             return ratio(media, ray, true, rng, counters);
         case Estimator::UnbiasedMarch:
+        case Estimator::DebiasedMarch:
             // An endless varying stretch has no march: residual ratio tracking covers it.
             if (const auto t = unbiased_march_transmittance(media, ray, rng, counters))
                 return *t;

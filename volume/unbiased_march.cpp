@@ -13,36 +13,6 @@ namespace {
 /// exp(-110) ~ 1.7e-48 is 0 in float (the smallest subnormal is 1.4e-45).
 constexpr double kUnderflowDepth = 110.0;
 
-/// A segment whose coefficients vary: the march samples its residual sigma_t - sigma_min.
-struct ResidualStretch {
-    MajorantSegment s;
-    BrickRef brick;
-    bool has_brick = false;
-    float mu = 0.0f;      ///< residual bound max_c (sigma_max - sigma_min), 1/m
-    double depth0 = 0.0;  ///< residual bound depth before the stretch, dimensionless
-};
-
-/// One march's estimate of the residual depth: nodes at residual bound depth (u + k) Delta.
-DVec3 march_residual(const MediumSet& media, const RayMediaQuery& query,
-                     const std::vector<ResidualStretch>& stretches, int nodes, double delta,
-                     float u, VolumeCounters& counters) {
-    DVec3 tau(0.0);
-    size_t i = 0;
-    for (int k = 0; k < nodes; ++k) {
-        const double depth = (static_cast<double>(u) + k) * delta;
-        while (i + 1 < stretches.size() && !(depth < stretches[i + 1].depth0))
-            ++i;
-        const ResidualStretch& r = stretches[i];
-        const double t = r.s.t0 + (depth - r.depth0) / r.mu;
-        const float t_node = std::min(std::max(static_cast<float>(t), r.s.t0), r.s.t1);
-        const Rgb sigma =
-            coefficients_at(media, query, r.s, r.has_brick ? &r.brick : nullptr, t_node).sigma_t;
-        ++counters.density_lookups;
-        tau += (delta / r.mu) * DVec3(sigma - r.s.sigma_min);
-    }
-    return tau;
-}
-
 }  // namespace
 
 int unbiased_march_nodes(double tau_bar) {
@@ -54,47 +24,139 @@ int unbiased_march_nodes(double tau_bar) {
     return std::max(1, static_cast<int>(per_march));
 }
 
+bool ResidualMarch::add(const MajorantSegment& s, const BrickRef* brick) {
+    const double length = static_cast<double>(s.t1) - s.t0;
+    if (length < HUGE_VAL)
+        m_segments.push_back({s.t0, s.t1, s.sigma_min, m_tau_min});
+    for (int c = 0; c < 3; ++c)
+        if (s.sigma_min[c] > 0.0f)  // an endless stretch of sigma_min = 0 adds 0, not NaN
+            m_tau_min[c] += static_cast<double>(s.sigma_min[c]) * length;
+    const float mu = max_component(s.sigma_max - s.sigma_min);
+    if (!(mu > 0.0f) || !(length > 0.0))
+        return true;
+    if (!(length < HUGE_VAL)) {
+        m_bounded = false;
+        return false;
+    }
+    m_stretches.push_back({s, brick ? *brick : BrickRef{}, brick != nullptr, mu, m_tau_bar});
+    m_tau_bar += static_cast<double>(mu) * length;
+    return true;
+}
+
+bool ResidualMarch::build(const MediumSet& media, const Ray& ray) {
+    m_stretches.clear();
+    m_segments.clear();
+    m_tau_min = DVec3(0.0);
+    m_tau_bar = 0.0;
+    m_bounded = true;
+    walk_majorants(media, ray,
+                   [&](const MajorantSegment& s, const BrickRef* brick) { return add(s, brick); });
+    return m_bounded;
+}
+
+bool ResidualMarch::build(const Ray& ray, const std::vector<MajorantSegment>& segments) {
+    (void)ray;
+    m_stretches.clear();
+    m_segments.clear();
+    m_tau_min = DVec3(0.0);
+    m_tau_bar = 0.0;
+    m_bounded = true;
+    for (const MajorantSegment& s : segments)
+        if (!add(s, nullptr))
+            break;
+    return m_bounded;
+}
+
+DVec3 ResidualMarch::node(const MediumSet& media, const RayMediaQuery& query, double depth,
+                          double delta, size_t& i, float* t_out) const {
+    while (i + 1 < m_stretches.size() && !(depth < m_stretches[i + 1].depth0))
+        ++i;
+    const Stretch& r = m_stretches[i];
+    const double t = r.s.t0 + (depth - r.depth0) / r.mu;
+    const float t_node = std::min(std::max(static_cast<float>(t), r.s.t0), r.s.t1);
+    if (t_out != nullptr)
+        *t_out = t_node;
+    const Rgb sigma =
+        coefficients_at(media, query, r.s, r.has_brick ? &r.brick : nullptr, t_node).sigma_t;
+    return (delta / r.mu) * DVec3(sigma - r.s.sigma_min);
+}
+
+DVec3 ResidualMarch::depth(const MediumSet& media, const RayMediaQuery& query, int nodes, float u,
+                           VolumeCounters& counters) const {
+    DVec3 tau(0.0);
+    if (m_stretches.empty())
+        return m_tau_min;
+    const double delta = m_tau_bar / nodes;
+    size_t i = 0;
+    for (int k = 0; k < nodes; ++k) {
+        tau += node(media, query, (static_cast<double>(u) + k) * delta, delta, i, nullptr);
+        ++counters.density_lookups;
+    }
+    return m_tau_min + tau;
+}
+
+ResidualMarch::Prefix ResidualMarch::start_prefix(int nodes, float u) const {
+    Prefix p;
+    p.nodes = std::max(nodes, 1);
+    p.delta = m_tau_bar / p.nodes;
+    p.u = u;
+    return p;
+}
+
+DVec3 ResidualMarch::prefix(const MediumSet& media, const RayMediaQuery& query, Prefix& p, float t,
+                            VolumeCounters& counters) const {
+    // Residual nodes before t: a node's t is monotone in its residual depth, so the running
+    // sum stops at the first node at or past t (that node is looked up again next call: the
+    // lookup is counted once per call, a node costs at most two).
+    while (!m_stretches.empty() && p.next < p.nodes) {
+        size_t i = p.stretch;
+        float t_node = 0.0f;
+        const double depth = (static_cast<double>(p.u) + p.next) * p.delta;
+        while (i + 1 < m_stretches.size() && !(depth < m_stretches[i + 1].depth0))
+            ++i;
+        const Stretch& r = m_stretches[i];
+        t_node = std::min(std::max(static_cast<float>(r.s.t0 + (depth - r.depth0) / r.mu), r.s.t0),
+                          r.s.t1);
+        if (!(t_node < t))
+            break;
+        p.residual += node(media, query, depth, p.delta, i, nullptr);
+        ++counters.density_lookups;
+        p.stretch = i;
+        ++p.next;
+    }
+    // The minorant's exact depth up to t.
+    while (p.segment + 1 < m_segments.size() && !(t < m_segments[p.segment + 1].t0))
+        ++p.segment;
+    DVec3 minorant(0.0);
+    if (!m_segments.empty()) {
+        const MinorantSegment& s = m_segments[p.segment];
+        const double inside = std::min(std::max(static_cast<double>(t) - s.t0, 0.0),
+                                       static_cast<double>(s.t1) - s.t0);
+        minorant = s.depth0 + inside * DVec3(s.sigma_min);
+    }
+    return minorant + p.residual;
+}
+
 std::optional<Rgb> unbiased_march_transmittance(const MediumSet& media, const Ray& ray, Pcg32& rng,
                                                 VolumeCounters& counters) {
     if (media.closed_form())
         return media.transmittance(ray);
-    thread_local std::vector<ResidualStretch> stretches;
-    stretches.clear();
-    DVec3 tau_min(0.0);
-    double tau_bar = 0.0;
-    bool bounded = true;
-    walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
-        const double length = static_cast<double>(s.t1) - s.t0;
-        for (int c = 0; c < 3; ++c)
-            if (s.sigma_min[c] > 0.0f)  // an endless stretch of sigma_min = 0 adds 0, not NaN
-                tau_min[c] += static_cast<double>(s.sigma_min[c]) * length;
-        const float mu = max_component(s.sigma_max - s.sigma_min);
-        if (!(mu > 0.0f) || !(length > 0.0))
-            return true;
-        if (!(length < HUGE_VAL)) {
-            bounded = false;
-            return false;
-        }
-        stretches.push_back({s, brick ? *brick : BrickRef{}, brick != nullptr, mu, tau_bar});
-        tau_bar += static_cast<double>(mu) * length;
-        return true;
-    });
-    if (!bounded)
+    thread_local ResidualMarch march;
+    if (!march.build(media, ray))
         return std::nullopt;
+    const DVec3& tau_min = march.minorant_depth();
     if (!(tau_min.x < kUnderflowDepth) && !(tau_min.y < kUnderflowDepth) &&
         !(tau_min.z < kUnderflowDepth))
         return Rgb(0.0f);
-    if (stretches.empty())
+    if (march.exact())
         return Rgb(glm::exp(-tau_min));
-    const int nodes = unbiased_march_nodes(tau_bar);
-    const double delta = tau_bar / nodes;
+    const int nodes = unbiased_march_nodes(march.residual_bound());
     const int order = sample_series_order(rng.next_float());
     const RayMediaQuery query(media, ray);
     thread_local std::vector<DVec3> tau_hat;
     tau_hat.clear();
     for (int j = 0; j <= order; ++j)
-        tau_hat.push_back(tau_min + march_residual(media, query, stretches, nodes, delta,
-                                                   rng.next_float(), counters));
+        tau_hat.push_back(march.depth(media, query, nodes, rng.next_float(), counters));
     return Rgb(debiased_exp(tau_hat));
 }
 

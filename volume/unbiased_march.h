@@ -17,6 +17,7 @@
 #include "volume/medium_set.h"
 
 #include <optional>
+#include <vector>
 
 namespace kasumi {
 
@@ -29,6 +30,76 @@ int unbiased_march_nodes(double tau_bar);
 /// The most nodes one march takes (a ray whose residual depth asks for more takes this many:
 /// still unbiased, with a larger variance).
 constexpr int kMaxMarchNodes = 4096;
+
+/// The jittered residual marches of one ray (the estimator above without its debiasing): built
+/// once per ray, then any number of independent unbiased estimates of the optical depth over the
+/// whole ray (`depth`) or over every prefix [ray.t_min, t) at once (`Prefix`, a running sum:
+/// with nodes s_j = (v + j) Delta in residual bound depth and v uniform, the sum over the nodes
+/// before t has expectation integral of (sigma_t - sigma_min) up to t for every t, so one march
+/// serves every t along the ray). Lives in a thread_local of its caller (its vectors are reused).
+class ResidualMarch {
+  public:
+    /// Reads the ray's majorant segments (walk_majorants); false when a varying segment is
+    /// endless (no march covers it).
+    bool build(const MediumSet& media, const Ray& ray);
+    /// As build, from a segment list already made for the ray (MediumSet::majorants).
+    bool build(const Ray& ray, const std::vector<MajorantSegment>& segments);
+
+    /// Integral of the minorant over the whole ray per channel (exact; +inf over an endless
+    /// stretch with sigma_min > 0).
+    const DVec3& minorant_depth() const { return m_tau_min; }
+    /// Residual bound depth tau_bar of the whole ray (dimensionless).
+    double residual_bound() const { return m_tau_bar; }
+    /// Whether every segment is constant (the minorant depth is the exact optical depth).
+    bool exact() const { return m_stretches.empty(); }
+
+    /// One unbiased estimate of the optical depth over the whole ray: the minorant's exact depth
+    /// plus `nodes` stratified residual nodes with offset u in [0, 1).
+    DVec3 depth(const MediumSet& media, const RayMediaQuery& query, int nodes, float u,
+                VolumeCounters& counters) const;
+
+    /// A running march: prefix(t) estimates the optical depth over [ray.t_min, t), t
+    /// non-decreasing between calls.
+    struct Prefix {
+        int nodes = 1;
+        double delta = 0.0;  ///< residual bound depth between nodes
+        float u = 0.0f;
+        int next = 0;         ///< index of the next node not yet summed
+        size_t stretch = 0;   ///< stretch holding node `next`
+        size_t segment = 0;   ///< minorant segment at the last t
+        DVec3 residual{0.0};  ///< sum of the nodes before the last t
+    };
+    Prefix start_prefix(int nodes, float u) const;
+    DVec3 prefix(const MediumSet& media, const RayMediaQuery& query, Prefix& p, float t,
+                 VolumeCounters& counters) const;
+
+  private:
+    /// A segment whose coefficients vary: the march samples its residual sigma_t - sigma_min.
+    struct Stretch {
+        MajorantSegment s;
+        BrickRef brick;
+        bool has_brick = false;
+        float mu = 0.0f;      ///< residual bound max_c (sigma_max - sigma_min), 1/m
+        double depth0 = 0.0;  ///< residual bound depth before the stretch, dimensionless
+    };
+    /// Every finite segment with its minorant depth before it (for prefixes).
+    struct MinorantSegment {
+        float t0 = 0.0f, t1 = 0.0f;
+        Rgb sigma_min{0.0f};
+        DVec3 depth0{0.0};
+    };
+    bool add(const MajorantSegment& s, const BrickRef* brick);
+    /// The node at residual bound depth `depth` (stretch index advanced from i): its t and the
+    /// term Delta (sigma_t - sigma_min) / mu.
+    DVec3 node(const MediumSet& media, const RayMediaQuery& query, double depth, double delta,
+               size_t& i, float* t_out) const;
+
+    std::vector<Stretch> m_stretches;
+    std::vector<MinorantSegment> m_segments;
+    DVec3 m_tau_min{0.0};
+    double m_tau_bar = 0.0;
+    bool m_bounded = true;
+};
 
 /// An unbiased estimate of the transmittance exp(-integral of sigma_t) over
 /// [ray.t_min, ray.t_max] per channel. Signed: a single estimate can fall below 0 or exceed 1

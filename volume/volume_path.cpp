@@ -1,5 +1,6 @@
 #include "volume/volume_path.h"
 
+#include "volume/debiased_march_single.h"
 #include "volume/march_single.h"
 #include "volume/transmittance.h"
 
@@ -19,6 +20,11 @@ VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& l
             return integrate_volume(media, lights, occlusion, ray, settings, true, rng, counters);
         return march_single(media, lights, occlusion, ray, settings, rng, counters);
     }
+    if (in_scatter && settings.estimator == Estimator::DebiasedMarch &&
+        settings.integrator == VolumeIntegrator::Single)
+        if (const auto debiased =
+                debiased_march_single(media, lights, occlusion, ray, settings, rng, counters))
+            return *debiased;
     VolumeResult result;
     if (in_scatter && settings.nee_points > 0) {
         // One walk gives the segment's transmittance and its in-scattering.

@@ -1,0 +1,178 @@
+#include "volume/debiased_march_single.h"
+
+#include "volume/debiased_exp.h"
+#include "volume/light_cache.h"
+#include "volume/march_walk.h"
+#include "volume/scattered_direct.h"
+#include "volume/transmittance.h"
+#include "volume/unbiased_march.h"
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+namespace kasumi {
+
+namespace {
+
+/// The camera depth (T = 1e-4) at which the tail roulette first plays, and the depth between
+/// later rounds (ln 10: the pivot's transmittance falls tenfold between rounds).
+constexpr double kTailDepth = 9.210340371976184;
+constexpr double kTailRound = 2.302585092994046;
+/// Survival probability of each tail round (the survivor's weight is its inverse).
+constexpr float kTailSurvival = 0.1f;
+
+double min_component(const DVec3& v) {
+    return std::min(v.x, std::min(v.y, v.z));
+}
+
+/// One directional light's per-ray record: its incident light (the same at every node), the
+/// scattering cosine toward the eye and its cache line (null cache: none).
+struct NodeLight {
+    size_t index = 0;
+    bool directional = false;
+    IncidentLight incident;
+    float mu = 0.0f;
+    const LightTransmittanceCache* cache = nullptr;
+    LightTransmittanceCache::Line line;
+};
+
+/// An unbiased transmittance toward a directional light from x, about the cached depth
+/// `pivot`: N_l independent residual marches of the shadow ray (N_l = 0 nine times in ten).
+/// An endless shadow stretch (no march) falls back to the unbiased-march estimator.
+Rgb controlled_shadow(const MediumSet& media, const Vec3& x, const Vec3& wi, const DVec3& pivot,
+                      const VolumeSettings& settings, float step, Pcg32& rng,
+                      VolumeCounters& counters) {
+    const int order = sample_series_order(rng.next_float());
+    if (order == 0)
+        return Rgb(glm::exp(-pivot));
+    const Ray shadow{x, wi, 0.0f, kInfinity};
+    thread_local ResidualMarch march;
+    if (!march.build(media, shadow))
+        return estimate_transmittance(media, shadow, settings.estimator, step, rng, counters);
+    const int nodes = unbiased_march_nodes(march.residual_bound());
+    const RayMediaQuery query(media, shadow);
+    std::array<DVec3, kMaxSeriesOrder> tau_hat;
+    for (int j = 0; j < order; ++j)
+        tau_hat[j] = march.depth(media, query, nodes, rng.next_float(), counters);
+    return Rgb(debiased_exp_about(pivot, tau_hat.data(), order));
+}
+
+}  // namespace
+
+std::optional<VolumeResult> debiased_march_single(const MediumSet& media,
+                                                  const std::vector<Light>& lights,
+                                                  const OcclusionQuery* occlusion, const Ray& ray,
+                                                  const VolumeSettings& settings, Pcg32& rng,
+                                                  VolumeCounters& counters) {
+    thread_local std::vector<MajorantSegment> segments;
+    media.majorants(ray, segments);
+    VolumeResult result;
+    if (segments.empty())
+        return result;
+    // An endless segment has no march (march_walk stops at it): such rays (unbounded fog) take
+    // the trackers instead.
+    if (!(segments.back().t1 < kInfinity))
+        return std::nullopt;
+    thread_local ResidualMarch camera;
+    if (!camera.build(ray, segments))
+        return std::nullopt;
+    const float h =
+        bounded_march_step(march_step_m(media, settings), march_extent(segments), counters);
+    const Vec3 wo = -ray.direction;
+    thread_local std::vector<NodeLight> node_lights;
+    node_lights.clear();
+    for (size_t i = 0; i < lights.size(); ++i) {
+        NodeLight m;
+        m.index = i;
+        if (std::holds_alternative<DirectionalLight>(lights[i].emitter)) {
+            m.directional = true;
+            m.incident = sample_incident(lights[i], ray.origin, rng);
+            if (is_black(m.incident.irradiance))
+                continue;
+            m.mu = scattering_cosine(wo, m.incident.wi);
+            m.cache = media.light_cache(i, lights[i]);
+            if (m.cache != nullptr)
+                m.line = m.cache->line(ray.origin, ray.direction);
+        }
+        node_lights.push_back(m);
+    }
+    // The camera corrections: N_cam running residual marches (usually none).
+    const int camera_order = sample_series_order(rng.next_float());
+    std::array<ResidualMarch::Prefix, kMaxSeriesOrder> prefixes;
+    std::array<DVec3, kMaxSeriesOrder> tau_hat;
+    const int corrections = camera.exact() ? 0 : camera_order;
+    const int camera_nodes = unbiased_march_nodes(camera.residual_bound());
+    for (int j = 0; j < corrections; ++j)
+        prefixes[j] = camera.start_prefix(camera_nodes, rng.next_float());
+    const RayMediaQuery query(media, ray);
+    const bool grey = media.grey_extinction();
+    const auto camera_transmittance = [&](float t, const DVec3& pivot) {
+        if (corrections == 0)
+            return grey ? Rgb(static_cast<float>(std::exp(-pivot.x))) : Rgb(glm::exp(-pivot));
+        for (int j = 0; j < corrections; ++j)
+            tau_hat[j] = camera.prefix(media, query, prefixes[j], t, counters);
+        return Rgb(debiased_exp_about(pivot, tau_hat.data(), corrections));
+    };
+    float weight = 1.0f;  // 1 / the tail roulette's survival so far
+    double cut = kTailDepth;
+    bool ended = false;
+    const DVec3 tau = march_walk(
+        media, ray, h, rng.next_float(), segments, false, counters,
+        [&](float t, const Vec3& x, const PointCoefficients& k, uint32_t mask, const DVec3& depth) {
+            if (min_component(depth) > cut) {
+                if (!(rng.next_float() < kTailSurvival)) {
+                    ended = true;
+                    return false;
+                }
+                weight /= kTailSurvival;
+                cut += kTailRound;
+            }
+            const bool emits = media.emits();
+            if (is_black(k.sigma_s) && !emits)
+                return true;
+            const Rgb t_camera = weight * camera_transmittance(t, depth);
+            if (emits)
+                result.radiance += (h * t_camera) * media.emission(x, mask);
+            if (is_black(k.sigma_s))
+                return true;
+            ++counters.steps;
+            Rgb direct(0.0f);
+            for (const NodeLight& m : node_lights) {
+                const Light& light = lights[m.index];
+                if (!m.directional) {
+                    direct += scattered_direct_one(media, light, m.index, occlusion, x, mask, wo,
+                                                   settings, h, rng, counters);
+                    continue;
+                }
+                if ((mask & (mask - 1)) != 0)
+                    ++counters.density_lookups;
+                const Rgb f = media.scattering(k, x, mask, m.mu);
+                float integral = 0.0f;
+                if (m.cache == nullptr || is_black(f) ||
+                    !m.cache->density_integral(m.line, t, integral)) {
+                    direct += light_term(media, light, occlusion, x, m.incident, f, std::nullopt,
+                                         settings, h, rng, counters);
+                    continue;
+                }
+                if (light.shadows != ShadowMode::None &&
+                    light_blocked(occlusion, x, m.incident, counters))
+                    continue;
+                const DVec3 pivot =
+                    static_cast<double>(integral) * DVec3(m.cache->sigma_t_per_density());
+                direct +=
+                    f * m.incident.irradiance *
+                    controlled_shadow(media, x, m.incident.wi, pivot, settings, h, rng, counters);
+            }
+            result.radiance += (h * t_camera) * direct;
+            return true;
+        });
+    if (ended) {
+        result.transmittance = Rgb(0.0f);
+    } else {
+        result.transmittance = weight * camera_transmittance(ray.t_max, tau);
+    }
+    return result;
+}
+
+}  // namespace kasumi
