@@ -65,6 +65,14 @@ def march_with_light_cache(step_voxels):
             False)
 
 
+def debiased_march(step_voxels):
+    """The unbiased marched single scattering at a node step of step_voxels voxels."""
+    return ("debiased-march %d voxels" % step_voxels,
+            {"integrator": "single", "estimator": "debiased-march",
+             "step_voxels": float(step_voxels)},
+            True)
+
+
 # kasumi configurations timed against vdb_render (name, render.volume settings, unbiased?).
 CONFIGS = [
     ("residual-ratio", {"integrator": "single", "estimator": "residual-ratio"}, True),
@@ -88,6 +96,10 @@ CONFIGS = [
     ("unbiased-march, 4 next-event points, stochastic filter",
      {"integrator": "single", "estimator": "unbiased-march", "nee_points": 4,
       "density_filter": "stochastic"}, True),
+    # Unbiased marched single scattering (volume/debiased_march_single.h, docs/volumes.md): the
+    # march's nodes, camera transmittance debiased about the trapezoid, shadows debiased about
+    # the light cache's depth: --configs 12,13,14.
+    *(debiased_march(voxels) for voxels in (2, 4, 8)),
 ]
 
 

@@ -100,9 +100,31 @@ DVec3 debiased_exp(const std::vector<DVec3>& tau_hat) {
     return result;
 }
 
-DVec3 debiased_exp_about(const DVec3& pivot, const DVec3* tau_hat, int count) {
+double SeriesRoulette::survival(int k) const {
+    if (k <= 0)
+        return 1.0;
+    if (k > kMaxSeriesOrder)
+        return 0.0;
+    double p = first;
+    for (int j = 2; j <= k; ++j)
+        p *= std::min(1.0, continuation / j);
+    return p;
+}
+
+int SeriesRoulette::sample(float u) const {
+    // P(N >= k) falls with k: walk up while the next order's survival exceeds u.
+    int n = 0;
+    double p = first;
+    while (n < kMaxSeriesOrder && p > u) {
+        ++n;
+        p *= std::min(1.0, continuation / (n + 1));
+    }
+    return n;
+}
+
+DVec3 debiased_exp_about(const DVec3& pivot, const DVec3* tau_hat, int count,
+                         const SeriesRoulette& roulette) {
     const int n = std::min(std::max(count, 0), kMaxSeriesOrder);
-    const auto& p = survival_table();
     DVec3 result(0.0);
     for (int c = 0; c < 3; ++c) {
         bool finite = pivot[c] < HUGE_VAL;
@@ -122,7 +144,7 @@ DVec3 debiased_exp_about(const DVec3& pivot, const DVec3* tau_hat, int count) {
         double series = 0.0, factorial = 1.0;
         for (int k = 0; k <= n; ++k) {
             factorial *= std::max(k, 1);
-            series += m[k] / (factorial * p[k]);
+            series += m[k] / (factorial * roulette.survival(k));
         }
         result[c] = weight * series;
     }

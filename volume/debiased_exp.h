@@ -38,16 +38,28 @@ int sample_series_order(float u);
 /// is 0. Never throws, never NaN for finite or +inf input.
 DVec3 debiased_exp(const std::vector<DVec3>& tau_hat);
 
+/// A Russian roulette on the series order for debiased_exp_about: P(N >= 1) = first, then order
+/// k follows order k - 1 with probability min(1, continuation / k). {0.1, 2} is the law above.
+struct SeriesRoulette {
+    double first = 0.1;
+    double continuation = 2.0;
+    /// P(N >= k); 0 past kMaxSeriesOrder.
+    double survival(int k) const;
+    /// N, by inversion from u in [0, 1): the largest k with P(N >= k) > u.
+    int sample(float u) const;
+};
+
 /// The debiased exp(-tau) per channel about a pivot that is not one of the estimates:
 ///   exp(-pivot) sum_{k=0..N} m_k / (k! P(N >= k)),
 /// m_k the elementary symmetric mean of the k-fold products of the differences pivot - tau^_i
-/// over the N = `count` estimates at tau_hat (N drawn by sample_series_order). Unbiased for
+/// over the N = `count` estimates at tau_hat (N drawn by roulette.sample). Unbiased for
 /// exp(-tau) when the pivot is fixed or independent of the estimates and the estimates are
 /// independent and unbiased: E[m_k] = (pivot - tau)^k, and the series of exp about the pivot
 /// (Kettunen et al. 2021, eq. 8) converges for any pivot, so any control (a biased march, a
 /// cached depth) serves; only the variance depends on how close it is. N = 0 costs no estimate:
 /// exp(-pivot). A channel whose pivot or an estimate is +inf is 0. Never NaN for finite or +inf
 /// input.
-DVec3 debiased_exp_about(const DVec3& pivot, const DVec3* tau_hat, int count);
+DVec3 debiased_exp_about(const DVec3& pivot, const DVec3* tau_hat, int count,
+                         const SeriesRoulette& roulette);
 
 }  // namespace kasumi

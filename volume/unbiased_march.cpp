@@ -3,6 +3,7 @@
 #include "volume/debiased_exp.h"
 #include "volume/majorant_walk.h"
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -40,6 +41,7 @@ bool ResidualMarch::add(const MajorantSegment& s, const BrickRef* brick) {
     }
     m_stretches.push_back({s, brick ? *brick : BrickRef{}, brick != nullptr, mu, m_tau_bar});
     m_tau_bar += static_cast<double>(mu) * length;
+    m_varying_length += length;
     return true;
 }
 
@@ -48,6 +50,7 @@ bool ResidualMarch::build(const MediumSet& media, const Ray& ray) {
     m_segments.clear();
     m_tau_min = DVec3(0.0);
     m_tau_bar = 0.0;
+    m_varying_length = 0.0;
     m_bounded = true;
     walk_majorants(media, ray,
                    [&](const MajorantSegment& s, const BrickRef* brick) { return add(s, brick); });
@@ -60,6 +63,7 @@ bool ResidualMarch::build(const Ray& ray, const std::vector<MajorantSegment>& se
     m_segments.clear();
     m_tau_min = DVec3(0.0);
     m_tau_bar = 0.0;
+    m_varying_length = 0.0;
     m_bounded = true;
     for (const MajorantSegment& s : segments)
         if (!add(s, nullptr))
@@ -158,6 +162,23 @@ std::optional<Rgb> unbiased_march_transmittance(const MediumSet& media, const Ra
     for (int j = 0; j <= order; ++j)
         tau_hat.push_back(march.depth(media, query, nodes, rng.next_float(), counters));
     return Rgb(debiased_exp(tau_hat));
+}
+
+std::optional<Rgb> unbiased_march_about(const MediumSet& media, const Ray& ray, const DVec3& pivot,
+                                        Pcg32& rng, VolumeCounters& counters) {
+    const SeriesRoulette roulette;
+    const int order = roulette.sample(rng.next_float());
+    if (order == 0)
+        return Rgb(glm::exp(-pivot));
+    thread_local ResidualMarch march;
+    if (!march.build(media, ray))
+        return std::nullopt;
+    const int nodes = unbiased_march_nodes(march.residual_bound());
+    const RayMediaQuery query(media, ray);
+    std::array<DVec3, kMaxSeriesOrder> tau_hat;
+    for (int j = 0; j < order; ++j)
+        tau_hat[j] = march.depth(media, query, nodes, rng.next_float(), counters);
+    return Rgb(debiased_exp_about(pivot, tau_hat.data(), order, roulette));
 }
 
 }  // namespace kasumi
