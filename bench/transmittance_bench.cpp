@@ -6,13 +6,18 @@
 // medians over repeats are printed, one JSON line per estimator, with a check of each against
 // a 1/64-voxel march per ray (largest per-ray gap in standard errors, relative gap of the sums).
 // Measured figures: docs/volumes.md (unbiased ray marching).
-// Usage: transmittance_bench scene.json [rays=64] [samples=256] [repeats=5] [estimators]
+// Usage: transmittance_bench scene.json [rays=64] [samples=256] [repeats=5] [estimators] [light]
 //   estimators: comma-separated render.volume.estimator names
-//   (default ratio,residual-ratio,unbiased-march)
+//   (default ratio,residual-ratio,unbiased-march), or "cache-controlled": the unbiased march
+//   debiased about the light cache's depth (unbiased_march_about, volume/unbiased_march.h),
+//   only on rays toward the first directional light (its cache's direction);
+//   light: every shadow ray toward that light (default: half of them in random directions).
 #include "core/rng.h"
 #include "scene/scene_loader.h"
+#include "volume/light_cache.h"
 #include "volume/medium_set.h"
 #include "volume/transmittance.h"
+#include "volume/unbiased_march.h"
 
 #include <time.h>
 
@@ -41,7 +46,8 @@ double median(std::vector<double> v) {
 
 /// Shadow rays from points where the media have extinction, inside the union of the grid boxes
 /// (or a 1 km box around the origin when no medium is a grid).
-std::vector<Ray> shadow_rays(const SceneDesc& scene, const MediumSet& media, int count) {
+std::vector<Ray> shadow_rays(const SceneDesc& scene, const MediumSet& media, int count,
+                             bool all_toward_light) {
     Bounds3 box{Vec3(-500.0f), Vec3(500.0f)};
     if (const MediumSet::FastMedium* g = media.single_grid())
         box = g->bounds_world;
@@ -60,7 +66,7 @@ std::vector<Ray> shadow_rays(const SceneDesc& scene, const MediumSet& media, int
         if (!(max_component(media.coefficients(p, all_media).sigma_t) > 0.0f))
             continue;
         Vec3 d = toward_light;
-        if (rays.size() % 2 == 1) {
+        if (rays.size() % 2 == 1 && !all_toward_light) {
             const float z = 1.0f - 2.0f * rng.next_float(), phi = 6.2831853f * rng.next_float();
             const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
             d = Vec3(r * std::cos(phi), r * std::sin(phi), z);
@@ -78,8 +84,29 @@ struct Run {
     std::vector<double> variances;  ///< per ray
 };
 
-Run run(const MediumSet& media, const std::vector<Ray>& rays, Estimator e, float step, int samples,
-        uint64_t seed) {
+/// An estimator of the bench: a render.volume.estimator, or the cache-controlled march (`cache`
+/// non-null: the light cache whose depth is the pivot).
+struct BenchEstimator {
+    std::string name;
+    Estimator estimator = Estimator::Ratio;
+    const LightTransmittanceCache* cache = nullptr;
+};
+
+Rgb estimate(const MediumSet& media, const Ray& ray, const BenchEstimator& e, float step,
+             Pcg32& rng, VolumeCounters& counters) {
+    if (e.cache == nullptr)
+        return estimate_transmittance(media, ray, e.estimator, step, rng, counters);
+    float depth = 0.0f;
+    if (!e.cache->density_integral(e.cache->line(ray.origin, ray.direction), 0.0f, depth))
+        depth = 0.0f;  // off the lattice: the pivot 0 (still unbiased)
+    const DVec3 pivot = static_cast<double>(depth) * DVec3(e.cache->sigma_t_per_density());
+    if (const auto t = unbiased_march_about(media, ray, pivot, rng, counters))
+        return *t;
+    return estimate_transmittance(media, ray, Estimator::UnbiasedMarch, step, rng, counters);
+}
+
+Run run(const MediumSet& media, const std::vector<Ray>& rays, const BenchEstimator& e, float step,
+        int samples, uint64_t seed) {
     Run r;
     VolumeCounters counters;
     std::vector<double> sum(rays.size(), 0.0), sum2(rays.size(), 0.0);
@@ -87,7 +114,7 @@ Run run(const MediumSet& media, const std::vector<Ray>& rays, Estimator e, float
     for (size_t i = 0; i < rays.size(); ++i)
         for (int s = 0; s < samples; ++s) {
             Pcg32 rng(seed, i * static_cast<uint64_t>(samples) + static_cast<uint64_t>(s));
-            const double t = estimate_transmittance(media, rays[i], e, step, rng, counters).g;
+            const double t = estimate(media, rays[i], e, step, rng, counters).g;
             sum[i] += t;
             sum2[i] += t * t;
         }
@@ -111,25 +138,38 @@ int main(int argc, char** argv) {
     if (argc < 2) {
         std::fprintf(stderr,
                      "usage: transmittance_bench scene.json [rays] [samples] [repeats] "
-                     "[estimators]\n");
+                     "[estimators] [light]\n");
         return 2;
     }
     try {
         const int ray_count = argc > 2 ? std::stoi(argv[2]) : 64;
         const int samples = argc > 3 ? std::stoi(argv[3]) : 256;
         const int repeats = argc > 4 ? std::stoi(argv[4]) : 5;
-        std::vector<Estimator> estimators;
-        std::stringstream names(argc > 5 ? argv[5] : "ratio,residual-ratio,unbiased-march");
-        for (std::string name; std::getline(names, name, ',');) {
-            const auto e = estimator_from_name(name);
-            if (!e)
-                throw std::runtime_error("unknown estimator \"" + name + "\"");
-            estimators.push_back(*e);
-        }
+        const bool all_toward_light = argc > 6 && std::string(argv[6]) == "light";
         const SceneDesc scene = load_scene(argv[1]);
         const MediumSet media(scene.media);
+        std::vector<BenchEstimator> estimators;
+        std::stringstream names(argc > 5 ? argv[5] : "ratio,residual-ratio,unbiased-march");
+        for (std::string name; std::getline(names, name, ',');) {
+            BenchEstimator b;
+            b.name = name;
+            if (name == "cache-controlled") {
+                for (size_t l = 0; l < scene.lights.size() && b.cache == nullptr; ++l)
+                    b.cache = media.light_cache(l, scene.lights[l]);
+                if (b.cache == nullptr || !all_toward_light)
+                    throw std::runtime_error(
+                        "cache-controlled needs one grid medium, a directional light and the "
+                        "\"light\" argument");
+            } else {
+                const auto e = estimator_from_name(name);
+                if (!e)
+                    throw std::runtime_error("unknown estimator \"" + name + "\"");
+                b.estimator = *e;
+            }
+            estimators.push_back(b);
+        }
         const float step = march_step_m(media, scene.render.volume);
-        const std::vector<Ray> rays = shadow_rays(scene, media, ray_count);
+        const std::vector<Ray> rays = shadow_rays(scene, media, ray_count, all_toward_light);
         std::vector<double> reference;
         for (const Ray& ray : rays) {
             Pcg32 rng(1, 1);
@@ -189,7 +229,7 @@ int main(int argc, char** argv) {
                 "\"lookups_per_estimate\": %.4g, \"efficiency\": %.6g, \"efficiency_ratio\": "
                 "%.4g, \"largest_gap_z\": %.3g, \"relative_gap\": %.2e, \"relative_gap_se\": "
                 "%.2e}\n",
-                estimator_name(estimators[e]), median(variance[e]), median(seconds[e]),
+                estimators[e].name.c_str(), median(variance[e]), median(seconds[e]),
                 median(lookups[e]), efficiency[e], efficiency[e] / efficiency[0], largest_z,
                 relative_gap, relative_gap_se);
         }
