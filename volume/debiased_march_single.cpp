@@ -2,6 +2,7 @@
 
 #include "volume/debiased_exp.h"
 #include "volume/light_cache.h"
+#include "volume/march_lights.h"
 #include "volume/march_walk.h"
 #include "volume/scattered_direct.h"
 #include "volume/transmittance.h"
@@ -26,17 +27,6 @@ double min_component(const DVec3& v) {
     return std::min(v.x, std::min(v.y, v.z));
 }
 
-/// One directional light's per-ray record: its incident light (the same at every node), the
-/// scattering cosine toward the eye and its cache line (null cache: none).
-struct NodeLight {
-    size_t index = 0;
-    bool directional = false;
-    IncidentLight incident;
-    float mu = 0.0f;
-    const LightTransmittanceCache* cache = nullptr;
-    LightTransmittanceCache::Line line;
-};
-
 }  // namespace
 
 std::optional<VolumeResult> debiased_march_single(const MediumSet& media,
@@ -59,23 +49,8 @@ std::optional<VolumeResult> debiased_march_single(const MediumSet& media,
     const float h =
         bounded_march_step(march_step_m(media, settings), march_extent(segments), counters);
     const Vec3 wo = -ray.direction;
-    thread_local std::vector<NodeLight> node_lights;
-    node_lights.clear();
-    for (size_t i = 0; i < lights.size(); ++i) {
-        NodeLight m;
-        m.index = i;
-        if (std::holds_alternative<DirectionalLight>(lights[i].emitter)) {
-            m.directional = true;
-            m.incident = sample_incident(lights[i], ray.origin, rng);
-            if (is_black(m.incident.irradiance))
-                continue;
-            m.mu = scattering_cosine(wo, m.incident.wi);
-            m.cache = media.light_cache(i, lights[i]);
-            if (m.cache != nullptr)
-                m.line = m.cache->line(ray.origin, ray.direction);
-        }
-        node_lights.push_back(m);
-    }
+    thread_local std::vector<MarchLight> march_lights;
+    collect_march_lights(media, lights, ray, true, rng, march_lights);
     // The camera corrections: N_cam running residual marches (usually none).
     const SeriesRoulette camera_law;
     const int camera_order = camera_law.sample(rng.next_float());
@@ -122,38 +97,29 @@ std::optional<VolumeResult> debiased_march_single(const MediumSet& media,
             if (is_black(k.sigma_s))
                 return true;
             ++counters.steps;
-            Rgb direct(0.0f);
-            for (const NodeLight& m : node_lights) {
-                const Light& light = lights[m.index];
-                if (!m.directional) {
-                    direct += scattered_direct_one(media, light, m.index, occlusion, x, mask, wo,
-                                                   settings, h, rng, counters);
-                    continue;
-                }
-                if ((mask & (mask - 1)) != 0)
-                    ++counters.density_lookups;
-                const Rgb f = media.scattering(k, x, mask, m.mu);
-                float integral = 0.0f;
-                if (m.cache == nullptr || is_black(f) ||
-                    !m.cache->density_integral(m.line, t, integral)) {
-                    direct += light_term(media, light, occlusion, x, m.incident, f, std::nullopt,
-                                         settings, h, rng, counters);
-                    continue;
-                }
-                if (light.shadows != ShadowMode::None &&
-                    light_blocked(occlusion, x, m.incident, counters))
-                    continue;
-                const DVec3 pivot =
-                    static_cast<double>(integral) * DVec3(m.cache->sigma_t_per_density());
-                const Ray shadow{x, m.incident.wi, 0.0f, kInfinity};
-                // A set with a light cache is one bounded grid: its shadow rays always march.
-                const std::optional<Rgb> t_light =
-                    unbiased_march_about(media, shadow, pivot, rng, counters);
-                direct += f * m.incident.irradiance *
-                          (t_light ? *t_light
-                                   : estimate_transmittance(media, shadow, settings.estimator, h,
-                                                            rng, counters));
-            }
+            const Rgb direct = march_node_light(
+                media, lights, march_lights, occlusion, x, k, mask, wo, settings, h, rng, counters,
+                [&](const MarchLight& m, const Rgb& f) {
+                    const Light& light = lights[m.index];
+                    float integral = 0.0f;
+                    if (m.cache == nullptr || is_black(f) ||
+                        !m.cache->density_integral(m.line, t, integral))
+                        return light_term(media, light, occlusion, x, m.incident, f, std::nullopt,
+                                          settings, h, rng, counters);
+                    if (light.shadows != ShadowMode::None &&
+                        light_blocked(occlusion, x, m.incident, counters))
+                        return Rgb(0.0f);
+                    const DVec3 pivot =
+                        static_cast<double>(integral) * DVec3(m.cache->sigma_t_per_density());
+                    const Ray shadow{x, m.incident.wi, 0.0f, kInfinity};
+                    // A set with a light cache is one bounded grid: its shadow rays always march.
+                    const std::optional<Rgb> t_light =
+                        unbiased_march_about(media, shadow, pivot, rng, counters);
+                    return f * m.incident.irradiance *
+                           (t_light ? *t_light
+                                    : estimate_transmittance(media, shadow, settings.estimator, h,
+                                                             rng, counters));
+                });
             result.radiance += (h * t_camera) * direct;
             return true;
         });

@@ -2,6 +2,7 @@
 
 #include "volume/equiangular.h"
 #include "volume/light_cache.h"
+#include "volume/march_lights.h"
 #include "volume/march_walk.h"
 #include "volume/scattered_direct.h"
 #include "volume/transmittance.h"
@@ -25,18 +26,6 @@ Rgb camera_transmittance(const glm::dvec3& depth, bool grey) {
         return Rgb(std::exp(-static_cast<float>(depth.x)));
     return Rgb(glm::exp(-depth));
 }
-
-/// Per-ray constants of one light for the marched single scattering: a directional light's
-/// incident light and scattering cosine are the same at every node, and its cached
-/// transmittance is read along the ray's lattice line (no transform per node).
-struct MarchLight {
-    size_t index = 0;
-    bool directional = false;
-    IncidentLight incident;
-    float mu = 0.0f;
-    const LightTransmittanceCache* cache = nullptr;
-    LightTransmittanceCache::Line line;
-};
 
 /// A directional light's march record at RAY: its incident light (the same everywhere along the
 /// ray: a delta light at infinity) and the scattering cosine toward WO. False when it sends no
@@ -437,21 +426,7 @@ VolumeResult march_single(const MediumSet& media, const std::vector<Light>& ligh
     const Vec3 wo = -ray.direction;
     const bool grey = media.grey_extinction();
     thread_local std::vector<MarchLight> march_lights;
-    march_lights.clear();
-    for (size_t i = 0; i < lights.size(); ++i) {
-        MarchLight m;
-        m.index = i;
-        if (std::holds_alternative<DirectionalLight>(lights[i].emitter)) {
-            if (!directional_march_light(lights[i], i, ray, wo, rng, m))
-                continue;
-            if (settings.light_cache) {
-                m.cache = media.light_cache(i, lights[i]);
-                if (m.cache != nullptr)
-                    m.line = m.cache->line(ray.origin, ray.direction);
-            }
-        }
-        march_lights.push_back(m);
-    }
+    collect_march_lights(media, lights, ray, settings.light_cache, rng, march_lights);
     // Each node stands for a step h: with the offset uniform per ray, sum h f(t_i) is an
     // unbiased estimate of the integral of f for a given T; T itself is the trapezoid's.
     const glm::dvec3 tau = march_walk(
@@ -466,23 +441,14 @@ VolumeResult march_single(const MediumSet& media, const std::vector<Light>& ligh
             if (is_black(k.sigma_s))
                 return true;
             ++counters.steps;
-            Rgb direct(0.0f);
-            for (const MarchLight& m : march_lights) {
-                const Light& light = lights[m.index];
-                if (!m.directional) {
-                    direct += scattered_direct_one(media, light, m.index, occlusion, x, mask, wo,
-                                                   settings, h, rng, counters);
-                    continue;
-                }
-                // One medium in the mask: its sigma_s is k's (no second lookup).
-                if ((mask & (mask - 1)) != 0)
-                    ++counters.density_lookups;
-                const Rgb f = media.scattering(k, x, mask, m.mu);
-                const std::optional<Rgb> cached =
-                    m.cache != nullptr ? m.cache->transmittance(m.line, t) : std::nullopt;
-                direct += light_term(media, light, occlusion, x, m.incident, f, cached, settings, h,
-                                     rng, counters);
-            }
+            const Rgb direct = march_node_light(
+                media, lights, march_lights, occlusion, x, k, mask, wo, settings, h, rng, counters,
+                [&](const MarchLight& m, const Rgb& f) {
+                    const std::optional<Rgb> cached =
+                        m.cache != nullptr ? m.cache->transmittance(m.line, t) : std::nullopt;
+                    return light_term(media, lights[m.index], occlusion, x, m.incident, f, cached,
+                                      settings, h, rng, counters);
+                });
             result.radiance += (h * t_camera) * direct;
             return true;
         });
