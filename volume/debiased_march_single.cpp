@@ -44,7 +44,7 @@ std::optional<VolumeResult> debiased_march_single(const MediumSet& media,
     if (!(segments.back().t1 < kInfinity))
         return std::nullopt;
     thread_local ResidualMarch camera;
-    if (!camera.build(ray, segments))
+    if (!camera.build(segments))
         return std::nullopt;
     const float h =
         bounded_march_step(march_step_m(media, settings), march_extent(segments), counters);

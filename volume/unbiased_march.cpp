@@ -45,26 +45,24 @@ bool ResidualMarch::add(const MajorantSegment& s, const BrickRef* brick) {
     return true;
 }
 
-bool ResidualMarch::build(const MediumSet& media, const Ray& ray) {
+void ResidualMarch::reset() {
     m_stretches.clear();
     m_segments.clear();
     m_tau_min = DVec3(0.0);
     m_tau_bar = 0.0;
     m_varying_length = 0.0;
     m_bounded = true;
+}
+
+bool ResidualMarch::build(const MediumSet& media, const Ray& ray) {
+    reset();
     walk_majorants(media, ray,
                    [&](const MajorantSegment& s, const BrickRef* brick) { return add(s, brick); });
     return m_bounded;
 }
 
-bool ResidualMarch::build(const Ray& ray, const std::vector<MajorantSegment>& segments) {
-    (void)ray;
-    m_stretches.clear();
-    m_segments.clear();
-    m_tau_min = DVec3(0.0);
-    m_tau_bar = 0.0;
-    m_varying_length = 0.0;
-    m_bounded = true;
+bool ResidualMarch::build(const std::vector<MajorantSegment>& segments) {
+    reset();
     for (const MajorantSegment& s : segments)
         if (!add(s, nullptr))
             break;

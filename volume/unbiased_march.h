@@ -43,7 +43,7 @@ class ResidualMarch {
     /// endless (no march covers it).
     bool build(const MediumSet& media, const Ray& ray);
     /// As build, from a segment list already made for the ray (MediumSet::majorants).
-    bool build(const Ray& ray, const std::vector<MajorantSegment>& segments);
+    bool build(const std::vector<MajorantSegment>& segments);
 
     /// Integral of the minorant over the whole ray per channel (exact; +inf over an endless
     /// stretch with sigma_min > 0).
@@ -90,6 +90,7 @@ class ResidualMarch {
         Rgb sigma_min{0.0f};
         DVec3 depth0{0.0};
     };
+    void reset();
     bool add(const MajorantSegment& s, const BrickRef* brick);
     /// The node at residual bound depth `depth` (stretch index advanced from i): its t and the
     /// term Delta (sigma_t - sigma_min) / mu.
