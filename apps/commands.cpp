@@ -291,7 +291,8 @@ void add_probe_command(CLI::App& root) {
     t_cmd->add_option("--to", t_options->to, "segment end X,Y,Z (metres)")->required();
     t_cmd->add_option(
         "--estimator", t_options->estimator,
-        "march | delta | ratio | residual-ratio | unbiased-march (default: the scene's)");
+        "march | delta | ratio | residual-ratio | unbiased-march | debiased-march (the last is "
+        "unbiased-march for a transmittance; default: the scene's)");
     t_cmd->add_option("--samples", t_options->samples, "estimates averaged (default 1000)")
         ->check(CLI::Range(1, 1 << 24));
     t_cmd->callback([t_options] {
@@ -302,8 +303,8 @@ void add_probe_command(CLI::App& root) {
             estimator = estimator_from_name(t_options->estimator);
             if (!estimator) {
                 throw Error(ErrorKind::Usage,
-                            "--estimator expects march, delta, ratio, residual-ratio or "
-                            "unbiased-march, got \"" +
+                            "--estimator expects march, delta, ratio, residual-ratio, "
+                            "unbiased-march or debiased-march, got \"" +
                                 t_options->estimator + "\"");
             }
         }
