@@ -276,6 +276,30 @@ std::string flight_summary(const SceneDesc& scene) {
 
 }  // namespace
 
+namespace {
+
+/// Russian roulette and splitting of the paths (render.volume.splitting; volume/weight_window.h).
+std::string path_roulette_summary(const VolumeSettings& volume) {
+    if (volume.splitting == PathSplitting::Off)
+        return ", Russian roulette from the third scattering";
+    if (volume.nee_points > 0)
+        return ", Russian roulette from the third scattering (splitting \"sun\": not with "
+               "nee_points)";
+    return ", Russian roulette and splitting by a weight window on throughput x the cached sun "
+           "transmittance (Vorba & Krivanek 2016; not in guiding's training passes)";
+}
+
+/// Where the camera segment's transmittance comes from (render.volume.camera_transmittance).
+std::string camera_transmittance_summary(const VolumeSettings& volume) {
+    if (volume.camera_transmittance == CameraTransmittance::Walk)
+        return std::string();
+    if (volume.nee_points > 0)
+        return ", camera transmittance from the tracked walk";
+    return ", camera transmittance from the first free flight's escape weight (no separate walk)";
+}
+
+}  // namespace
+
 Plan make_plan(const SceneDesc& scene) {
     Plan plan;
     const bool has_shapes = !scene.shapes.empty();
@@ -361,7 +385,7 @@ Plan make_plan(const SceneDesc& scene) {
          !plan.in_scattering ? "no in-scattering"
          : multiple
              ? "volumetric path tracing, max_depth " + std::to_string(volume.max_depth) +
-                   ", Russian roulette from the third scattering" +
+                   path_roulette_summary(volume) + camera_transmittance_summary(volume) +
                    (volume.guiding.enabled
                         ? ", directions guided (mix " + format_g(volume.guiding.mix) +
                               " of incident-radiance histograms x phase, kd-tree trained in " +

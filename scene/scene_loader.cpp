@@ -152,6 +152,13 @@ RenderSettings parse_render(const JsonNode& node) {
             render.volume.free_flight = parse_choice<FreeFlightSampling>(
                 *flight, {{"tracking", FreeFlightSampling::Tracking},
                           {"decomposition", FreeFlightSampling::Decomposition}});
+        if (auto camera_t = volume.optional("camera_transmittance"))
+            render.volume.camera_transmittance = parse_choice<CameraTransmittance>(
+                *camera_t, {{"walk", CameraTransmittance::Walk},
+                            {"first_flight", CameraTransmittance::FirstFlight}});
+        if (auto splitting = volume.optional("splitting"))
+            render.volume.splitting = parse_choice<PathSplitting>(
+                *splitting, {{"off", PathSplitting::Off}, {"sun", PathSplitting::Sun}});
         if (auto sampling = volume.optional("light_sampling"))
             render.volume.light_sampling = parse_choice<LightSampling>(
                 *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});

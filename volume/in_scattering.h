@@ -7,6 +7,7 @@
 #include "lights/light.h"
 #include "volume/guiding/guiding_settings.h"
 #include "volume/medium_set.h"
+#include "volume/path_settings.h"
 
 #include <vector>
 
@@ -81,6 +82,8 @@ struct VolumeSettings {
     /// docs/volumes.md): unbiased for the trackers; the march and the light cache keep
     /// trilinear lookups. false: trilinear everywhere.
     bool stochastic_filter = false;
+    CameraTransmittance camera_transmittance = CameraTransmittance::Walk;
+    PathSplitting splitting = PathSplitting::Off;
 };
 
 struct VolumeResult {

@@ -5,6 +5,7 @@
 #include "volume/scattered_direct.h"
 #include "volume/spectral_mis_flight.h"
 #include "volume/transmittance.h"
+#include "volume/weight_window.h"
 
 #include <cmath>
 
@@ -18,12 +19,14 @@ constexpr int kRouletteDepth = 3;
 /// The next path vertex after a scattering event at `position`: a direction from the media's
 /// phase mixture, or, where `guiding` has a guide for the point (one medium there), from the
 /// guided mixture (volume/guiding/guided_scattering.h); throughput times f / pdf, Russian
-/// roulette from kRouletteDepth events on, and the continued ray (ended at the environment's
-/// surface). The vertex goes to `recorder`. False: the path ends.
+/// roulette from kRouletteDepth events on (unless `roulette` is false: the weight window plays
+/// it), and the continued ray (ended at the environment's surface). The vertex goes to
+/// `recorder`. False: the path ends.
 bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask,
                     const PointCoefficients& k, const Vec3& wo, int depth,
                     const PathEnvironment* environment, const PathGuiding* guiding,
-                    GuidingPathRecorder& recorder, Pcg32& rng, Rgb& throughput, Ray& ray) {
+                    GuidingPathRecorder& recorder, Pcg32& rng, Rgb& throughput, Ray& ray,
+                    bool roulette = true) {
     const DirectionalHistogram* guide = nullptr;
     if (guiding != nullptr && guiding->field != nullptr && mask != 0 && (mask & (mask - 1)) == 0)
         guide = guiding->field->find(position);
@@ -38,7 +41,7 @@ bool scatter_onward(const MediumSet& media, const Vec3& position, uint32_t mask,
         return false;
     throughput *= next.scattering / next.pdf;
     recorder.vertex(position, next.wi, next.pdf, throughput);
-    if (depth >= kRouletteDepth) {
+    if (roulette && depth >= kRouletteDepth) {
         const float survive = std::min(1.0f, max_component(throughput));
         if (!(rng.next_float() < survive))
             return false;
@@ -66,6 +69,16 @@ float mean(const Rgb& c) {
     return (c.r + c.g + c.b) * (1.0f / 3.0f);
 }
 
+/// A scattering vertex whose continuation waits: a copy made by the weight window.
+struct PendingVertex {
+    Vec3 position{0.0f};
+    uint32_t mask = 0;
+    PointCoefficients k;
+    Vec3 wo{0.0f};
+    int depth = 0;
+    Rgb throughput{0.0f};
+};
+
 }  // namespace
 
 Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
@@ -78,8 +91,31 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
         radiance += contribution;
         recorder.add(contribution);
     };
+    // Training paths stay single (one record chain per path): the window runs when rendering.
+    const bool window = settings.splitting == PathSplitting::Sun &&
+                        settings.integrator == VolumeIntegrator::Multiple &&
+                        (guiding == nullptr || guiding->records == nullptr);
+    // The copies the window made wait here; a nested call (the environment's own paths) works
+    // above `base` and leaves the stack as it found it.
+    thread_local std::vector<PendingVertex> pending;
+    const size_t base = pending.size();
+    float window_centre = 0.0f;
     Ray ray = camera_segment;
-    for (int depth = 0;;) {
+    int depth = 0;
+    // Continues the next waiting copy, if any, by its own direction; false: none is left.
+    const auto resume = [&] {
+        while (pending.size() > base) {
+            const PendingVertex v = pending.back();
+            pending.pop_back();
+            throughput = v.throughput;
+            depth = v.depth;
+            if (scatter_onward(media, v.position, v.mask, v.k, v.wo, depth, environment, guiding,
+                               recorder, rng, throughput, ray, false))
+                return true;
+        }
+        return false;
+    };
+    for (;;) {
         const FreeFlight flight = free_flight(media, ray, throughput, settings, rng, counters);
         gather(flight.emitted);
         throughput *= flight.weight;
@@ -89,6 +125,8 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             // The camera segment's own escape is composited by the caller (T * L_surface).
             if (depth > 0 && environment != nullptr && !is_black(throughput))
                 gather(throughput * environment->radiance(ray, rng));
+            if (resume())
+                continue;
             break;
         }
         ++counters.scattering_events;
@@ -96,11 +134,34 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
         gather(throughput * scattered_direct(media, lights, occlusion, flight.position,
                                              flight.media_mask, wo, settings, rng, counters,
                                              &flight.k));
-        if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth)
+        if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth) {
+            if (resume())
+                continue;
             break;
+        }
+        if (window) {
+            // Expected contribution beta I(x) against the centre set at the first vertex.
+            const float expected =
+                mean(throughput) * sun_importance(media, lights, flight.position);
+            if (depth == 1)
+                window_centre = expected;
+            const SplitDecision split = split_decision(expected / window_centre, rng.next_float());
+            throughput *= split.weight;
+            for (int c = 1; c < split.copies; ++c)
+                pending.push_back(
+                    {flight.position, flight.media_mask, flight.k, wo, depth, throughput});
+            if (split.copies == 0) {
+                if (resume())
+                    continue;
+                break;
+            }
+        }
         if (!scatter_onward(media, flight.position, flight.media_mask, flight.k, wo, depth,
-                            environment, guiding, recorder, rng, throughput, ray))
+                            environment, guiding, recorder, rng, throughput, ray, !window)) {
+            if (resume())
+                continue;
             break;
+        }
     }
     return radiance;
 }

@@ -33,9 +33,12 @@ VolumeResult integrate_media(const MediumSet& media, const std::vector<Light>& l
                                   counters, &result.transmittance, guiding);
         return result;
     }
-    if (in_scatter && nothing_behind) {
-        // T only feeds the transmittance AOV here: the first free flight's escape weight is an
-        // unbiased estimate of it, so no separate walk through the media is needed.
+    if (in_scatter &&
+        (nothing_behind || settings.camera_transmittance == CameraTransmittance::FirstFlight)) {
+        // The first free flight's escape weight is an unbiased estimate of T, so no separate
+        // walk through the media is needed: with nothing behind T only feeds the AOV; else
+        // T L_surface stays unbiased because L_surface was estimated with other random numbers
+        // (E[T^ L^] = T L for independent estimates; render.volume.camera_transmittance).
         result.radiance = path_radiance(media, lights, occlusion, environment, ray, settings, rng,
                                         counters, &result.transmittance, guiding);
         return result;

@@ -21,7 +21,8 @@ namespace kasumi {
 ///   max_depth, adding what they meet in `environment` (null: nothing) when they leave.
 /// `nothing_behind`: no light arrives from beyond the segment (no surface, black background),
 /// so the transmittance is only an AOV; the trackers then take it from the first free flight's
-/// escape weight (unbiased, noisier) instead of a separate walk. `guiding`, if given, guides the
+/// escape weight (unbiased, noisier) instead of a separate walk, as they always do with
+/// render.volume.camera_transmittance "first_flight". `guiding`, if given, guides the
 /// tracked paths' scattering directions and collects training records
 /// (volume/guiding/path_guiding.h; the marched single-scattering paths take no directions).
 /// Never throws.
