@@ -40,8 +40,19 @@ class ScanlineSurface {
     const ScanlineImage& visibility() const { return m_visibility; }
 
   private:
-    /// The hit on the pass's triangle at pixel (x, y), empty when no triangle is seen there.
-    std::optional<SurfaceHit> face_hit(int x, int y, const Ray& ray) const;
+    /// One triangle's plane equations along one scanline: det(X), det·u(X), det·v(X) as
+    /// (value at X = 0, slope per pixel), det·t constant (t per unit of d(X) = d0 + X d1).
+    struct SpanPlane {
+        uint32_t shape = 0, primitive = 0;
+        int y = 0;
+        DVec3 d0{0.0}, d1{0.0};
+        glm::dvec2 det{0.0}, det_u{0.0}, det_v{0.0};
+        double det_t = 0.0;
+    };
+    /// The plane equations of triangle (shape, primitive) along scanline y (empty: a sphere).
+    std::optional<SpanPlane> span_plane(uint32_t shape, uint32_t primitive, int y) const;
+    /// The hit at pixel centre (x + 0.5, y + 0.5), empty when behind the eye or edge on.
+    std::optional<SurfaceHit> hit_at(const SpanPlane& plane, int x, const Ray& ray) const;
 
     ScanlineImage m_visibility;
     ScanlineCamera m_camera;
