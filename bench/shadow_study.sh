@@ -17,15 +17,18 @@
 # build/shadow-maps) and the render time per pixel, and the error against ray tracing at the
 # same size. The scanline method ("shadows": "scanline", build/scanline: the pass) answers camera
 # hits at pixel centres only, so its row renders with film.jitter false and is compared with a
-# ray-traced render without jitter (rendered for it, not timed in the table).
+# ray-traced render without jitter (rendered for it, not timed in the table). The row
+# "scanline-surface" is the scanline renderer as a whole (render.surface "scanline" and
+# "shadows": "scanline": visible surfaces and shadows from the scanline pass, no camera or shadow
+# ray for them; build/scanline then holds both passes), compared the same way.
 #
 # Usage: bench/shadow_study.sh [BUILD_DIR]   (default build/release; needs targets kasumi and
 #        shadow_compare).  Environment: RUNS (default 3), THREADS (default 2), OUT (scratch dir),
 #        RESOLUTIONS (default "256 512 1024 2048 4096"), MAX_AREA_RES (default 1024),
 #        SCENES (default "shadow_maps soft_shadows shadow_volumes polygons"), EXTRA (more render
 #        arguments, e.g. "--res 320x200 --spp 1" on a busy machine), POLYGON_SIZES (default
-#        "320x200 640x400 1280x800"), POLYGON_METHODS (default "ray object-space shadow-volume
-#        map").
+#        "320x200 640x400 1280x800"), POLYGON_METHODS (default "ray scanline scanline-surface
+#        object-space shadow-volume map").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build/release}
@@ -38,7 +41,7 @@ RESOLUTIONS=${RESOLUTIONS:-"256 512 1024 2048 4096"}
 MAX_AREA_RES=${MAX_AREA_RES:-1024}
 SCENES=${SCENES:-"shadow_maps soft_shadows shadow_volumes polygons"}
 POLYGON_SIZES=${POLYGON_SIZES:-"320x200 640x400 1280x800"}
-POLYGON_METHODS=${POLYGON_METHODS:-"ray scanline object-space shadow-volume map"}
+POLYGON_METHODS=${POLYGON_METHODS:-"ray scanline scanline-surface object-space shadow-volume map"}
 read -r -a EXTRA_ARGS <<< "${EXTRA:-}"
 mkdir -p "$OUT"
 
@@ -116,11 +119,14 @@ polygons() {
             [[ $light == directional ]] && light_sets=(--set "/lights/0=$sun")
             for size in $POLYGON_SIZES; do
                 for method in $POLYGON_METHODS; do
-                    local sets=(--res "$size" "${light_sets[@]}" --set "/lights/0/shadows=\"$method\"")
+                    local shadows=$method
+                    [[ $method == scanline-surface ]] && shadows=scanline
+                    local sets=(--res "$size" "${light_sets[@]}" --set "/lights/0/shadows=\"$shadows\"")
+                    [[ $method == scanline-surface ]] && sets+=(--set '/render/surface="scanline"')
                     [[ $method == map ]] && sets+=(--set '/lights/0/shadow_map={"resolution": 2048}')
                     local name="poly_${scene}_${light}_${size}_${method}" build per_pixel error
                     local reference="poly_${scene}_${light}_${size}_ray"
-                    if [[ $method == scanline ]]; then
+                    if [[ $method == scanline || $method == scanline-surface ]]; then
                         # The pass answers camera hits at pixel centres only: both renders
                         # without jitter, the scanline one against a ray-traced one like it.
                         sets+=(--set /film/jitter=false)

@@ -69,6 +69,10 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
         // got one pixel at a time (same images, bit for bit). With adaptive sampling only the
         // row's pixels still sampling take the next sample index.
         const SurfaceScene* surfaces = scene.surfaces();
+        // render.surface "scanline": the visible surfaces at the pixel centres come from the
+        // scanline renderer instead of camera rays through Embree (same hits, same shading).
+        const ScanlineSurface* scanline = scene.scanline_surface();
+        std::vector<int> pixel_x;
         std::vector<PixelSample> sums(row);
         std::vector<int> hits(row);
         std::vector<float> depth_sums(row);
@@ -101,7 +105,13 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                                                     options.frame));
                     rays[k] = samples[k].ray;
                 }
-                if (surfaces != nullptr)
+                if (scanline != nullptr) {
+                    pixel_x.clear();
+                    for (size_t i : active)
+                        pixel_x.push_back(x0 + static_cast<int>(i));
+                    scanline->first_hits(y, pixel_x.data(), rays.data(), active.size(),
+                                         first_hits.data());
+                } else if (surfaces != nullptr)
                     surfaces->intersect_coherent(rays.data(), active.size(), first_hits.data());
                 for (size_t k = 0; k < active.size(); ++k) {
                     const size_t i = active[k];

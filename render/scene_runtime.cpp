@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "scene/gi_plan.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace kasumi {
@@ -42,6 +43,22 @@ float SceneRuntime::staged_visibility(size_t light, const SurfaceHit& hit, const
             return shadows->in_shadow(hit, origin) ? 0.0f : 1.0f;
     }
     return 1.0f;
+}
+
+std::unique_ptr<ScanlineSurface> SceneRuntime::make_scanline_surface() const {
+    const ScanlineCamera view =
+        scanline_camera(m_desc.camera, m_desc.film.width, m_desc.film.height);
+    // A light's scanline shadow pass has already resolved the same visibility: reuse it.
+    ScanlineImage visibility;
+    const ScanlineShadows* pass = nullptr;
+    for (size_t i = 0; m_scanline != nullptr && i < m_desc.lights.size() && pass == nullptr; ++i)
+        pass = m_scanline->shadows(i);
+    if (pass != nullptr)
+        visibility = pass->image();
+    else
+        visibility = render_scanline_visibility(m_desc.shapes, view);
+    return std::make_unique<ScanlineSurface>(m_desc.shapes, std::move(visibility), view,
+                                             *m_surfaces);
 }
 
 SceneRuntime::SceneRuntime(SceneDesc desc, const GiFactory& make_gi)
@@ -88,6 +105,11 @@ SceneRuntime::SceneRuntime(SceneDesc desc, std::shared_ptr<const SurfaceScene> s
             std::make_unique<ScanlineShadowSet>(m_desc.shapes, m_desc.lights, m_desc.camera,
                                                 m_desc.film.width, m_desc.film.height, *m_surfaces);
         m_build_times.scanline_s = since(start);
+    }
+    if (m_plan.scanline_surface) {
+        const auto start = Clock::now();
+        m_scanline_surface = make_scanline_surface();
+        m_build_times.scanline_s = std::max(0.0, m_build_times.scanline_s) + since(start);
     }
     if (m_plan.volume) {
         const auto start = Clock::now();

@@ -8,6 +8,7 @@
 #include "scene/scene.h"
 #include "sky/sky_renderer.h"
 #include "surface/scanline/scanline_shadow_set.h"
+#include "surface/scanline/scanline_surface.h"
 #include "surface/shadows/object_space_shadows.h"
 #include "surface/shadows/shadow_map.h"
 #include "surface/shadows/shadow_volume.h"
@@ -36,10 +37,10 @@ struct BuildTimes {
     double shadow_maps_s = -1.0;     ///< depth maps rendered from the lights
     double shadow_volumes_s = -1.0;  ///< silhouettes extruded into volumes
     double object_space_s = -1.0;    ///< detail polygons clipped from the lights (or reused)
-    double scanline_s = -1.0;        ///< scanline passes (visibility and shadowed sub-spans)
-    double media_s = -1.0;           ///< the media set (majorants, overlaps)
-    double sky_s = -1.0;             ///< the sky's tables (all, or the sun-dependent ones)
-    double gi_s = -1.0;              ///< radiosity solve or photon maps
+    double scanline_s = -1.0;  ///< scanline passes (visibility, shadowed sub-spans, the surface)
+    double media_s = -1.0;     ///< the media set (majorants, overlaps)
+    double sky_s = -1.0;       ///< the sky's tables (all, or the sun-dependent ones)
+    double gi_s = -1.0;        ///< radiosity solve or photon maps
 };
 
 class SceneRuntime {
@@ -81,12 +82,17 @@ class SceneRuntime {
     const ObjectSpaceShadowSet* object_space_shadows() const { return m_object_space.get(); }
     /// Null unless the plan has scanline shadows.
     const ScanlineShadowSet* scanline_shadows() const { return m_scanline.get(); }
+    /// The camera's visible surfaces by scanline; null unless render.surface is "scanline".
+    const ScanlineSurface* scanline_surface() const { return m_scanline_surface.get(); }
     /// The render.gi method and its precomputation (render/gi_method.h); null for "none".
     const GiMethod* gi() const { return m_gi.get(); }
     /// Time spent building each part in the constructor.
     const BuildTimes& build_times() const { return m_build_times; }
 
   private:
+    /// The scanline surface of render.surface "scanline" (after the scanline shadow passes).
+    std::unique_ptr<ScanlineSurface> make_scanline_surface() const;
+
     SceneDesc m_desc;
     Plan m_plan;
     Camera m_camera;
@@ -96,6 +102,7 @@ class SceneRuntime {
     std::unique_ptr<ShadowVolumeSet> m_shadow_volumes;
     std::unique_ptr<ObjectSpaceShadowSet> m_object_space;
     std::unique_ptr<ScanlineShadowSet> m_scanline;
+    std::unique_ptr<ScanlineSurface> m_scanline_surface;
     MediumSet m_media;
     std::unique_ptr<SkyRenderer> m_sky;
     std::shared_ptr<const GiMethod> m_gi;

@@ -274,6 +274,40 @@ std::string flight_summary(const SceneDesc& scene) {
            "hero channels)";
 }
 
+/// render.surface "scanline": the camera's visible surfaces from a scanline renderer of the
+/// shapes' triangles (surface/scanline/scanline_surface.h).
+void add_scanline_surface_stage(const SceneDesc& scene, Plan& plan) {
+    const bool wanted = scene.render.surface == SurfaceMethod::Scanline;
+    size_t polygons = 0, spheres = 0;
+    for (const Shape& shape : scene.shapes) {
+        if (std::holds_alternative<SphereShape>(shape.geometry))
+            ++spheres;
+        else if (std::holds_alternative<QuadShape>(shape.geometry))
+            polygons += 2;
+        else if (std::holds_alternative<BoxShape>(shape.geometry))
+            polygons += 12;
+        else if (const auto* mesh = std::get_if<MeshShape>(&shape.geometry))
+            polygons += mesh->mesh.triangles.size();
+    }
+    plan.scanline_surface = wanted && plan.surfaces;
+    plan.stages.push_back(
+        {"scanline-surface", plan.scanline_surface,
+         !wanted ? "render.surface is \"ray\": primary rays through Embree"
+         : !plan.surfaces
+             ? "no shapes to draw"
+             : "surface: scanline renderer (Bouknight & Kelley 1970), " +
+                   count(polygons, "polygon") +
+                   " (edge table by first scanline, active edge list, a span per "
+                   "polygon, depth per span segment) at the pixel centres of " +
+                   std::to_string(scene.film.width) + "x" + std::to_string(scene.film.height) +
+                   "; position, normal and uv perspective-correct along the span; " +
+                   (spheres > 0
+                        ? count(spheres, "sphere") + " ray-cast per pixel and depth-resolved "
+                                                     "against the scanline face"
+                        : std::string("no spheres")) +
+                   "; Whitted, GI and shadow rays secondary through Embree"});
+}
+
 }  // namespace
 
 namespace {
@@ -312,6 +346,8 @@ Plan make_plan(const SceneDesc& scene) {
                            has_shapes
                                ? count(scene.shapes.size(), "shape") + ": Embree BVH, closest hit"
                                : "no shapes: no BVH built"});
+
+    add_scanline_surface_stage(scene, plan);
 
     plan.direct_light = has_shapes && has_lights;
     plan.stages.push_back({"direct-light", plan.direct_light,

@@ -28,6 +28,7 @@ struct Plan {
     bool shadow_volumes = false;  ///< shadow volumes for lights with "shadows": "shadow-volume"
     bool object_space_shadows = false;  ///< detail polygons for "shadows": "object-space"
     bool scanline_shadows = false;      ///< scanline passes for "shadows": "scanline"
+    bool scanline_surface = false;      ///< render.surface "scanline": visible surfaces by scanline
     bool visible_lights = false;        ///< camera and Whitted rays see polygon and sphere lights
 };
 

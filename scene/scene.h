@@ -49,11 +49,18 @@ struct WhittedSettings {
     float min_weight = 1e-3f;  ///< a branch whose path weight falls below this is not traced
 };
 
+/// What finds the camera's visible surfaces (render.surface).
+enum class SurfaceMethod {
+    Ray,       ///< a primary ray per camera sample through Embree (the default)
+    Scanline,  ///< a scanline renderer of polygons (surface/scanline/scanline_surface.h)
+};
+
 struct RenderSettings {
     uint64_t seed = 0;
-    int threads = 0;      ///< 0: all hardware threads
-    int tile_size = 16;   ///< pixels
-    bool shadows = true;  ///< shadow rays for surfaces and media
+    int threads = 0;                             ///< 0: all hardware threads
+    int tile_size = 16;                          ///< pixels
+    bool shadows = true;                         ///< shadow rays for surfaces and media
+    SurfaceMethod surface = SurfaceMethod::Ray;  ///< render.surface: "ray" or "scanline"
     VolumeSettings volume;
     WhittedSettings whitted;
     SkySettings sky;           ///< render.sky, render.spectral, render.wavelengths_nm (docs/sky.md)

@@ -102,7 +102,7 @@ GuidingSettings parse_guiding(const JsonNode& node) {
     return guiding;
 }
 
-RenderSettings parse_render(const JsonNode& node) {
+RenderSettings parse_render(const JsonNode& node, const FilmDesc& film) {
     JsonObjectReader reader(node);
     RenderSettings render;
     if (auto v = reader.optional("seed")) {
@@ -117,6 +117,15 @@ RenderSettings parse_render(const JsonNode& node) {
         render.tile_size = parse_int_in(*v, 1, 1024);
     if (auto v = reader.optional("shadows"))
         render.shadows = v->as_bool();
+    if (auto v = reader.optional("surface")) {
+        render.surface = parse_choice<SurfaceMethod>(
+            *v, {{"ray", SurfaceMethod::Ray}, {"scanline", SurfaceMethod::Scanline}});
+        // The scanline renderer resolves visibility at pixel centres only (one pass per frame).
+        if (render.surface == SurfaceMethod::Scanline && film.jitter)
+            v->fail(
+                "\"scanline\" draws the pixel centres only: set film.jitter to false (jittered "
+                "camera samples need \"ray\")");
+    }
     if (auto v = reader.optional("volume")) {
         JsonObjectReader volume(*v);
         if (auto step = volume.optional("step_m"))
@@ -228,7 +237,7 @@ SceneDesc parse_scene(const Json& root_value, const std::string& file, ElementCa
     if (auto v = reader.optional("film"))
         scene.film = parse_film(*v);
     if (auto v = reader.optional("render"))
-        scene.render = parse_render(*v);
+        scene.render = parse_render(*v, scene.film);
     if (auto v = reader.optional("ambient"))
         scene.ambient = v->non_negative_rgb();
     if (auto v = reader.optional("background"))

@@ -472,18 +472,38 @@ std::optional<SurfaceHit> SurfaceScene::hit_from(const Ray& ray, const RTCRayHit
         return hit;
     }
 
-    hit.primitive = rayhit.hit.primID;
-    hit.u = rayhit.hit.u;
-    hit.v = rayhit.hit.v;
-    const auto& tri = g.triangles[rayhit.hit.primID];
+    return triangle_hit(ray, hit.shape, rayhit.hit.primID, hit.t, rayhit.hit.u, rayhit.hit.v,
+                        DVec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
+}
+
+SurfaceHit SurfaceScene::hit_on_triangle(const Ray& ray, uint32_t shape, uint32_t primitive,
+                                         float t, float u, float v) const {
+    KASUMI_CHECK(shape < m_impl->geometries.size() && !m_impl->geometries[shape].is_sphere &&
+                 primitive < m_impl->geometries[shape].triangles.size());
+    return triangle_hit(ray, shape, primitive, t, u, v, DVec3(0.0, 0.0, 1.0));
+}
+
+SurfaceHit SurfaceScene::triangle_hit(const Ray& ray, uint32_t shape, uint32_t primitive, float t,
+                                      float u, float v, const DVec3& fallback_normal) const {
+    const Geometry& g = m_impl->geometries[shape];
+    SurfaceHit hit;
+    hit.t = t;
+    hit.shape = shape;
+    hit.material = g.material;
+    hit.shading = g.shading;
+    const DVec3 p = DVec3(ray.origin) + static_cast<double>(hit.t) * DVec3(ray.direction);
+    hit.primitive = primitive;
+    hit.u = u;
+    hit.v = v;
+    const auto& tri = g.triangles[primitive];
     const DVec3 v0(g.positions[tri[0]]);
     const bool tabled = !g.face_normals.empty();
-    DVec3 n = tabled ? g.face_normals[rayhit.hit.primID] : face_normal(g, tri);
+    DVec3 n = tabled ? g.face_normals[primitive] : face_normal(g, tri);
     if (n == DVec3(0.0))  // degenerate: Embree's normal
-        n = glm::normalize(DVec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z));
+        n = glm::normalize(fallback_normal);
     // Project onto the triangle's plane: removes the error t carries along the ray.
     hit.position = Vec3(p - glm::dot(p - v0, n) * n);
-    hit.error_scale = tabled ? g.face_error_scales[rayhit.hit.primID] : face_error_scale(g, tri);
+    hit.error_scale = tabled ? g.face_error_scales[primitive] : face_error_scale(g, tri);
     hit.shading_normal = Vec3(n);
     if (!g.normals.empty()) {
         const Vec3 interpolated = kasumi::interpolate<Vec3>(

@@ -68,6 +68,11 @@ class SurfaceScene {
     void intersect_coherent(const Ray* rays, size_t count, std::optional<SurfaceHit>* hits) const;
     /// True if anything is hit with t in (ray.t_min, ray.t_max).
     bool occluded(const Ray& ray) const;
+    /// The hit of `ray` on triangle `primitive` of shape `shape` (not a sphere) at t metres with
+    /// barycentrics (u, v), found by other means than Embree (render.surface "scanline",
+    /// surface/scanline/scanline_surface.h): built exactly as intersect() builds Embree's hits.
+    SurfaceHit hit_on_triangle(const Ray& ray, uint32_t shape, uint32_t primitive, float t, float u,
+                               float v) const;
     /// The triangle `hit` lies on; empty for spheres.
     std::optional<HitTriangle> triangle(const SurfaceHit& hit) const;
 
@@ -80,6 +85,10 @@ class SurfaceScene {
     struct Impl;
     /// The SurfaceHit of Embree's answer for `ray` (none if it hit nothing).
     std::optional<SurfaceHit> hit_from(const Ray& ray, const RTCRayHit& rayhit) const;
+    /// A triangle's hit (hit_from's and hit_on_triangle's); `fallback_normal`: the normal of a
+    /// degenerate triangle.
+    SurfaceHit triangle_hit(const Ray& ray, uint32_t shape, uint32_t primitive, float t, float u,
+                            float v, const DVec3& fallback_normal) const;
     std::unique_ptr<Impl> m_impl;
 };
 

@@ -1,5 +1,6 @@
 #include "surface/scanline/scanline_shadows.h"
 
+#include "surface/scanline/active_edge_list.h"
 #include "surface/shadows/shadow_projection.h"
 
 #include <tbb/blocked_range.h>
@@ -70,28 +71,6 @@ std::vector<DVec2> project(const std::array<DVec3, 3>& v, const Camera& c) {
         screen.emplace_back((p.x / (p.z * c.half_width) + 1.0) * 0.5 * c.width,
                             (1.0 - p.y / (p.z * c.half_height)) * 0.5 * c.height);
     return screen;
-}
-
-/// The x extent of a convex polygon at height y (empty when the row misses it).
-std::optional<std::pair<double, double>> row_extent(const std::vector<DVec2>& polygon, double y) {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (size_t i = 0; i < polygon.size(); ++i) {
-        const DVec2& a = polygon[i];
-        const DVec2& b = polygon[(i + 1) % polygon.size()];
-        if ((a.y <= y && b.y >= y) || (b.y <= y && a.y >= y)) {
-            if (a.y == b.y) {
-                lo = std::min({lo, a.x, b.x});
-                hi = std::max({hi, a.x, b.x});
-            } else {
-                const double x = a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x);
-                lo = std::min(lo, x);
-                hi = std::max(hi, x);
-            }
-        }
-    }
-    if (!(lo <= hi))
-        return std::nullopt;
-    return std::make_pair(lo, hi);
 }
 
 /// One face's pixels on a row: centres x0..x1 lie in its projection; h = n·(v0 − eye).
@@ -188,10 +167,11 @@ class RowVisibility {
     size_t m_evaluations = 0;
 };
 
-}  // namespace
-
-ScanlineImage render_scanline_shadows(const std::vector<Shape>& shapes, const LightCentre& light,
-                                      const ScanlineCamera& camera) {
+/// The scanline pass; shadows for `light` when given, else visibility alone.
+ScanlineImage scanline_pass(const std::vector<Shape>& shapes, const LightCentre* light_or_null,
+                            const ScanlineCamera& camera) {
+    // Without a light the occluders are not used: any centre lists the triangles.
+    const LightCentre light = light_or_null != nullptr ? *light_or_null : LightCentre{};
     const Camera cam{DVec3(camera.eye),   DVec3(camera.forward),
                      DVec3(camera.right), DVec3(camera.up),
                      camera.half_width,   camera.half_width * camera.height / camera.width,
@@ -231,13 +211,21 @@ ScanlineImage render_scanline_shadows(const std::vector<Shape>& shapes, const Li
             if (f.first_row <= f.last_row)
                 faces.push_back(std::move(f));
         }
-    // The polygon table: faces sorted by their first scanline.
+    // The polygon table: faces sorted by their first scanline; a face's rank there orders the
+    // spans of a scanline (and breaks depth ties). Its edges go into the edge table.
     std::vector<uint32_t> table(faces.size());
     for (uint32_t i = 0; i < table.size(); ++i)
         table[i] = i;
     std::stable_sort(table.begin(), table.end(), [&](uint32_t a, uint32_t b) {
         return faces[a].first_row < faces[b].first_row;
     });
+    std::vector<uint32_t> rank(faces.size());
+    for (uint32_t i = 0; i < table.size(); ++i)
+        rank[table[i]] = i;
+    std::vector<std::vector<DVec2>> polygons(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f)
+        polygons[f] = faces[f].screen;
+    const EdgeTable edge_table(polygons, rank, camera.height);
 
     // Shadow pairs per face, found the first time the face is seen (by whichever band of rows
     // sees it first: the list is the same whoever builds it).
@@ -266,115 +254,132 @@ ScanlineImage render_scanline_shadows(const std::vector<Shape>& shapes, const Li
         return pairs[f];
     };
 
-    // Bands of rows in parallel. Each band starts its active polygon list from the table (the
-    // faces covering its first row, in table order: the order the incremental list has there),
-    // so every row sees its faces in the same order as in one sequential pass, and the image is
-    // the same for any number of threads.
+    // Bands of kBandRows rows in parallel, starting at fixed rows. Each band starts its active
+    // edge list at its first row (x evaluated there, then stepped by dx/dy), so a row's spans
+    // and their order do not depend on which thread ran the band, nor on how many there are.
+    const int bands = (camera.height + kBandRows - 1) / kBandRows;
     tbb::parallel_for(
-        tbb::blocked_range<int>(0, camera.height, kBandRows),
-        [&](const tbb::blocked_range<int>& band) {
-            std::vector<uint32_t> active;
-            size_t next = 0;
-            while (next < table.size() && faces[table[next]].first_row <= band.begin()) {
-                if (faces[table[next]].last_row >= band.begin())
-                    active.push_back(table[next]);
-                ++next;
-            }
-            std::vector<int64_t> winner(camera.width);
-            size_t spans = 0, covered = 0, evaluations = 0;
-            for (int row = band.begin(); row < band.end(); ++row) {
-                // The active polygon list: add the faces starting here, drop the finished ones.
-                while (next < table.size() && faces[table[next]].first_row <= row)
-                    active.push_back(table[next++]);
-                active.erase(std::remove_if(active.begin(), active.end(),
-                                            [&](uint32_t f) { return faces[f].last_row < row; }),
-                             active.end());
-                const double y = row + 0.5;
-                std::vector<RowSpan> row_spans;
-                for (uint32_t f : active) {
-                    const auto extent = row_extent(faces[f].screen, y);
-                    if (!extent)
-                        continue;
-                    const int x0 = std::max(0, static_cast<int>(std::ceil(extent->first - 0.5)));
-                    const int x1 = std::min(camera.width - 1,
-                                            static_cast<int>(std::floor(extent->second - 0.5)));
-                    if (x0 <= x1)
-                        row_spans.push_back(
-                            {f, x0, x1, glm::dot(faces[f].normal, faces[f].vertices[0] - cam.eye)});
-                    covered += x0 <= x1 ? size_t(x1 - x0 + 1) : 0;
-                }
-                evaluations += RowVisibility(faces, cam, y).resolve(row_spans, winner);
-                // Spans: runs of pixels won by one face.
-                for (int x = 0; x < camera.width;) {
-                    const int64_t f = winner[x];
-                    int end = x + 1;
-                    while (end < camera.width && winner[end] == f)
-                        ++end;
-                    if (f >= 0) {
-                        const Face& face = faces[f];
-                        ++spans;
-                        const auto& list = shadow_pairs(static_cast<uint32_t>(f));
-                        const Receiver& r = receivers[f];
-                        // The eye on the other side of the face than the light: self-shadowed.
-                        const bool away = glm::dot(r.frame.normal, cam.eye - r.frame.origin) <= 0.0;
-                        const DVec3 d0 = cam.direction(0.0, y), d1 = cam.direction(1.0, y) - d0;
-                        const double h = glm::dot(r.frame.normal, r.frame.origin - cam.eye);
-                        for (int k = x; k < end; ++k) {
-                            const size_t p = size_t(row) * camera.width + k;
-                            image.shape[p] = face.shape;
-                            image.primitive[p] = face.primitive;
-                            image.shadowed[p] = !r.faces_light || away ? 1 : 0;
-                        }
-                        if (r.faces_light && !away) {
-                            for (const std::vector<HalfPlane>& edges : list) {
-                                // Each edge line f(P) = m·P + c >= 0 on the plane; along the row
-                                // P(X) = eye + h d(X) / (n·d(X)), and n·d(X) has the sign of h for
-                                // points in front of the eye, so f >= 0 iff
-                                // sign(h) ((m·eye + c) n·d(X) + h m·d(X)) >= 0: linear in X.
-                                double lo = x + 0.5, hi = end - 0.5;
-                                for (const HalfPlane& e : edges) {
-                                    const DVec3 m =
-                                        e.normal.x * r.frame.e_u + e.normal.y * r.frame.e_v;
-                                    const double c = e.offset - glm::dot(m, r.frame.origin);
-                                    const double at_eye = glm::dot(m, cam.eye) + c;
-                                    const double sign = h < 0.0 ? -1.0 : 1.0;
-                                    const SpanLine line{
-                                        sign * (at_eye * glm::dot(r.frame.normal, d0) +
-                                                h * glm::dot(m, d0)),
-                                        sign * (at_eye * glm::dot(r.frame.normal, d1) +
-                                                h * glm::dot(m, d1))};
-                                    if (line.beta > 0.0)
-                                        lo = std::max(lo, -line.alpha / line.beta);
-                                    else if (line.beta < 0.0)
-                                        hi = std::min(hi, -line.alpha / line.beta);
-                                    else if (line.alpha < 0.0)
-                                        hi = -std::numeric_limits<double>::infinity();
-                                    if (!(lo <= hi))
-                                        break;
+        tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& band_range) {
+            for (int band = band_range.begin(); band < band_range.end(); ++band) {
+                const int first = band * kBandRows;
+                const int last = std::min(camera.height, first + kBandRows);
+                ActiveEdgeList active(edge_table, first);
+                std::vector<PolygonSpan> polygon_spans;
+                std::vector<int64_t> winner(camera.width);
+                size_t spans = 0, covered = 0, evaluations = 0;
+                for (int row = first; row < last; ++row) {
+                    if (row > first)
+                        active.next_row();
+                    const double y = row + 0.5;
+                    active.spans(polygon_spans);
+                    std::vector<RowSpan> row_spans;
+                    for (const PolygonSpan& span : polygon_spans) {
+                        const uint32_t f = span.polygon;
+                        const int x0 = std::max(0, static_cast<int>(std::ceil(span.x_lo - 0.5)));
+                        const int x1 = std::min(camera.width - 1,
+                                                static_cast<int>(std::floor(span.x_hi - 0.5)));
+                        if (x0 <= x1)
+                            row_spans.push_back(
+                                {f, x0, x1,
+                                 glm::dot(faces[f].normal, faces[f].vertices[0] - cam.eye)});
+                        covered += x0 <= x1 ? size_t(x1 - x0 + 1) : 0;
+                    }
+                    evaluations += RowVisibility(faces, cam, y).resolve(row_spans, winner);
+                    // Spans: runs of pixels won by one face.
+                    for (int x = 0; x < camera.width;) {
+                        const int64_t f = winner[x];
+                        int end = x + 1;
+                        while (end < camera.width && winner[end] == f)
+                            ++end;
+                        if (f >= 0) {
+                            const Face& face = faces[f];
+                            ++spans;
+                            if (light_or_null == nullptr) {
+                                for (int k = x; k < end; ++k) {
+                                    const size_t p = size_t(row) * camera.width + k;
+                                    image.shape[p] = face.shape;
+                                    image.primitive[p] = face.primitive;
                                 }
-                                if (!(lo <= hi))
-                                    continue;
-                                // Pixels whose centre X = k + 0.5 lies in [lo, hi].
-                                const int k0 = std::max(x, static_cast<int>(std::ceil(lo - 0.5)));
-                                const int k1 =
-                                    std::min(end - 1, static_cast<int>(std::floor(hi - 0.5)));
-                                for (int k = k0; k <= k1; ++k)
-                                    image.shadowed[size_t(row) * camera.width + k] = 1;
+                                x = end;
+                                continue;
+                            }
+                            const auto& list = shadow_pairs(static_cast<uint32_t>(f));
+                            const Receiver& r = receivers[f];
+                            // The eye on the other side of the face than the light: self-shadowed.
+                            const bool away =
+                                glm::dot(r.frame.normal, cam.eye - r.frame.origin) <= 0.0;
+                            const DVec3 d0 = cam.direction(0.0, y), d1 = cam.direction(1.0, y) - d0;
+                            const double h = glm::dot(r.frame.normal, r.frame.origin - cam.eye);
+                            for (int k = x; k < end; ++k) {
+                                const size_t p = size_t(row) * camera.width + k;
+                                image.shape[p] = face.shape;
+                                image.primitive[p] = face.primitive;
+                                image.shadowed[p] = !r.faces_light || away ? 1 : 0;
+                            }
+                            if (r.faces_light && !away) {
+                                for (const std::vector<HalfPlane>& edges : list) {
+                                    // Each edge line f(P) = m·P + c >= 0 on the plane; along the
+                                    // row P(X) = eye + h d(X) / (n·d(X)), and n·d(X) has the sign
+                                    // of h for points in front of the eye, so f >= 0 iff sign(h)
+                                    // ((m·eye + c) n·d(X) + h m·d(X)) >= 0: linear in X.
+                                    double lo = x + 0.5, hi = end - 0.5;
+                                    for (const HalfPlane& e : edges) {
+                                        const DVec3 m =
+                                            e.normal.x * r.frame.e_u + e.normal.y * r.frame.e_v;
+                                        const double c = e.offset - glm::dot(m, r.frame.origin);
+                                        const double at_eye = glm::dot(m, cam.eye) + c;
+                                        const double sign = h < 0.0 ? -1.0 : 1.0;
+                                        const SpanLine line{
+                                            sign * (at_eye * glm::dot(r.frame.normal, d0) +
+                                                    h * glm::dot(m, d0)),
+                                            sign * (at_eye * glm::dot(r.frame.normal, d1) +
+                                                    h * glm::dot(m, d1))};
+                                        if (line.beta > 0.0)
+                                            lo = std::max(lo, -line.alpha / line.beta);
+                                        else if (line.beta < 0.0)
+                                            hi = std::min(hi, -line.alpha / line.beta);
+                                        else if (line.alpha < 0.0)
+                                            hi = -std::numeric_limits<double>::infinity();
+                                        if (!(lo <= hi))
+                                            break;
+                                    }
+                                    if (!(lo <= hi))
+                                        continue;
+                                    // Pixels whose centre X = k + 0.5 lies in [lo, hi].
+                                    const int k0 =
+                                        std::max(x, static_cast<int>(std::ceil(lo - 0.5)));
+                                    const int k1 =
+                                        std::min(end - 1, static_cast<int>(std::floor(hi - 0.5)));
+                                    for (int k = k0; k <= k1; ++k)
+                                        image.shadowed[size_t(row) * camera.width + k] = 1;
+                                }
                             }
                         }
+                        x = end;
                     }
-                    x = end;
                 }
+                span_count += spans;
+                covered_count += covered;
+                evaluation_count += evaluations;
             }
-            span_count += spans;
-            covered_count += covered;
-            evaluation_count += evaluations;
         });
     image.spans = span_count;
     image.shadow_pairs = shadow_pair_count;
     image.covered_pixels = covered_count;
     image.depth_evaluations = evaluation_count;
     return image;
+}
+
+}  // namespace
+
+ScanlineImage render_scanline_shadows(const std::vector<Shape>& shapes, const LightCentre& light,
+                                      const ScanlineCamera& camera) {
+    return scanline_pass(shapes, &light, camera);
+}
+
+ScanlineImage render_scanline_visibility(const std::vector<Shape>& shapes,
+                                         const ScanlineCamera& camera) {
+    return scanline_pass(shapes, nullptr, camera);
 }
 
 }  // namespace kasumi

@@ -7,8 +7,9 @@
 /// giving the shadowed sub-spans.
 ///
 /// Visibility: the triangles of boxes, quads and meshes are clipped to the near plane and
-/// projected; a polygon table sorted by first scanline feeds an active polygon list; on each
-/// scanline every active polygon gives a span (its edges crossed at the scanline's centre);
+/// projected; a polygon table sorted by first scanline ranks them, and their edges go into an
+/// edge table sorted by first scanline feeding an active edge list (active_edge_list.h); on
+/// each scanline every polygon crossing it gives a span (its active edges' x, stepped by dx/dy);
 /// the spans' ends cut the scanline into segments, and depth is compared per segment: the
 /// nearest face at both ends of a segment is the nearest over all of it, as inverse depth is
 /// linear along the scanline (Watkins 1970), else the segment is halved. Shadows: the runs of
@@ -50,9 +51,14 @@ struct ScanlineImage {
 };
 
 /// Renders the visibility and shadows of `shapes`' polygons for a point or parallel light.
-/// Rows run in parallel bands (TBB, the caller's arena); the result is the same for any
-/// number of threads.
+/// Rows run in parallel bands of fixed rows (TBB, the caller's arena); the result is the same
+/// for any number of threads.
 ScanlineImage render_scanline_shadows(const std::vector<Shape>& shapes, const LightCentre& light,
                                       const ScanlineCamera& camera);
+
+/// The visibility part of render_scanline_shadows alone (no light: `shadowed` stays 0 and no
+/// shadow pairs are formed): render.surface "scanline" (scanline_surface.h).
+ScanlineImage render_scanline_visibility(const std::vector<Shape>& shapes,
+                                         const ScanlineCamera& camera);
 
 }  // namespace kasumi
