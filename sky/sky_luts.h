@@ -3,7 +3,7 @@
 /// Atmosphere Rendering Technique", Computer Graphics Forum 39(4)):
 ///  - transmittance to the top of the atmosphere T(r, mu), 256 x 64, Bruneton's 2017
 ///    parametrisation (exact at the texel centres, bilinear between);
-///  - multiple scattering Psi_ms(r, mu_s), 128 x 32: the light scattered into orders 2 and up
+///  - multiple scattering Psi_ms(r, mu_s), 128 x 16: the light scattered into orders 2 and up
 ///    with an isotropic phase (Hillaire eqs. 5-10), its orders iterated through the table (as
 ///    in Bruneton & Neyret 2008) instead of Hillaire's local geometric series, which fails in
 ///    twilight; with it, the sky's irradiance on the ground per sun cosine;
