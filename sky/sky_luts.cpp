@@ -31,10 +31,11 @@ double distance_to_top(double r, double mu, double rt) {
 /// sin(a +- b) of the horizon's cosine and sine: no inverse trigonometry for the nodes that are
 /// not in the band, nearly all of them); a margin of 1e-9 in the cosine leaves the borderline
 /// cases to the exact formula.
-double sun_disc_fraction(double r, double mu_s, double rg, double radius_rad, double& sin_horizon) {
+double sun_disc_fraction(double r, double mu_s, double rg, const SkyLuts::SunDisc& sun,
+                         double& sin_horizon) {
     const double cos_h = std::min(1.0, rg / r);
     sin_horizon = -std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
-    const double cos_rad = std::cos(radius_rad), sin_rad = std::sin(radius_rad);
+    const double cos_rad = sun.cos_radius, sin_rad = sun.sin_radius;
     const double upper = sin_horizon * cos_rad + cos_h * sin_rad;  // sin(horizon + radius)
     if (mu_s > upper + 1e-9)
         return 1.0;
@@ -44,7 +45,7 @@ double sun_disc_fraction(double r, double mu_s, double rg, double radius_rad, do
     if (cos_h > sin_rad && mu_s < lower - 1e-9)
         return 0.0;
     return disc_fraction_above(std::asin(std::clamp(mu_s, -1.0, 1.0)) + std::acos(cos_h),
-                               radius_rad);
+                               sun.radius);
 }
 
 }  // namespace
@@ -74,6 +75,7 @@ SkyLuts::SkyLuts(const SkyScene& sky) {
     m_bands = a.bands;
     m_rg = a.ground_radius_m;
     m_rt = a.top_radius_m;
+    m_sun = SunDisc(sky.sun_radius_rad);
     const size_t nb = static_cast<size_t>(m_bands);
     const double big_h = std::sqrt(m_rt * m_rt - m_rg * m_rg);
     // Transmittance: x_r = rho / H, x_mu = (d - d_min) / (d_max - d_min) (Bruneton 2017).
@@ -130,7 +132,7 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
     const Atmosphere& a = sky.atmosphere;
     const size_t nb = static_cast<size_t>(m_bands);
     constexpr int W = kMultipleW, H = kMultipleH;
-    constexpr int kDirCos = 16, kDirAz = 8, kNodes = 12;  // kDirAz even (symmetry below)
+    constexpr int kDirCos = 32, kDirAz = 8, kNodes = 12;  // kDirAz even (symmetry below)
     const double dw = 4.0 * kPiD / (kDirCos * kDirAz);
     // Geometry per altitude row and direction zenith (sun independent): each node's radius,
     // its up vector's components along the direction's horizontal part (a) and the vertical
@@ -190,7 +192,7 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
     // Sun transmittance at radius r, sun cosine mu_s there (disc fraction above the horizon).
     const auto sun_t = [&](double r, double mu_s, double* out) {
         double sin_horizon = 0.0;
-        const double fraction = sun_disc_fraction(r, mu_s, m_rg, sky.sun_radius_rad, sin_horizon);
+        const double fraction = sun_disc_fraction(r, mu_s, m_rg, m_sun, sin_horizon);
         if (fraction <= 0.0) {
             for (size_t b = 0; b < nb; ++b)
                 out[b] = 0.0;
@@ -234,35 +236,41 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
                fx * e[static_cast<size_t>(x0 + 1) * nb + b];
     };
     const double albedo_over_pi = 1.0 / kPiD;
+    std::array<double, kDirAz / 2> cos_phis{};
+    for (int az = 0; az < kDirAz / 2; ++az)
+        cos_phis[static_cast<size_t>(az)] = std::cos(2.0 * kPiD * (az + 0.5) / kDirAz);
     for (int order = 1; order <= kMultipleOrders; ++order) {
         tbb::parallel_for(0, W * H, [&](int texel) {
             const int i = texel % W, j = texel / W;
             const double mu_s = -1.0 + 2.0 * i / (W - 1);
             const double sin_s = std::sqrt(std::max(0.0, 1.0 - mu_s * mu_s));
-            std::vector<double> g(nb, 0.0), e(nb, 0.0), l(nb, 0.0), ts(nb, 0.0);
-            Bands p_r{};
+            // The first order's light splits by its phase: l_r and l_m (Rayleigh and Mie, per
+            // direction, without the phase) are weighted by the phases and normalised by the
+            // quadrature's own integral of each phase over the sphere (q_r, q_m; 1 exactly),
+            // so that the Mie forward peak, which the 16 x 8 directions sample coarsely,
+            // carries its whole unit mass (the error of the raw sum, up to tens of percent at
+            // some sun cosines, cost 1-2 dB of dome PSNR at the 30 deg sun). l holds the rest
+            // (the ground; every later order, isotropic).
+            Bands g{}, e{}, l{}, ts{}, l_r{}, l_m{}, g_r{}, g_m{}, e_r{}, e_m{}, q_r{}, p_r{};
+            double q_m = 0.0;
             for (int c = 0; c < kDirCos; ++c) {
                 const DirRay& ray = rays[static_cast<size_t>(j * kDirCos + c)];
                 // Azimuths phi and 2 pi - phi see the same sun cosines and scattering angles:
                 // half of them, counted twice.
                 for (int az = 0; az < kDirAz / 2; ++az) {
-                    const double cos_phi = std::cos(2.0 * kPiD * (az + 0.5) / kDirAz);
-                    std::fill(l.begin(), l.end(), 0.0);
-                    // Scattering angle of the first order: sun light (propagating along -s)
-                    // turned toward x (along -d): cos = s . d.
-                    const double nu = sin_s * ray.sin_t * cos_phi + mu_s * ray.cos_t;
-                    if (order == 1)
-                        rayleigh_phase_bands(a, nu, p_r);
-                    const double p_m = eval_precise(a.mie_phase, nu);
+                    const double cos_phi = cos_phis[static_cast<size_t>(az)];
+                    std::fill_n(l.begin(), nb, 0.0);
+                    std::fill_n(l_r.begin(), nb, 0.0);
+                    std::fill_n(l_m.begin(), nb, 0.0);
                     for (size_t n = 0; n < ray.nodes.size(); ++n) {
                         const Node& node = ray.nodes[n];
                         const double mu_y = sin_s * node.a * cos_phi + mu_s * node.b;
                         if (order == 1) {
                             sun_t(node.r, mu_y, ts.data());
-                            for (size_t b = 0; b < nb; ++b)
-                                l[b] += (ray.w_rayleigh[n * nb + b] * p_r[b] +
-                                         ray.w_mie[n * nb + b] * p_m) *
-                                        ts[b];
+                            for (size_t b = 0; b < nb; ++b) {
+                                l_r[b] += ray.w_rayleigh[n * nb + b] * ts[b];
+                                l_m[b] += ray.w_mie[n * nb + b] * ts[b];
+                            }
                         } else {
                             const Tap tap = g_tap(node, mu_y);
                             for (size_t b = 0; b < nb; ++b) {
@@ -284,11 +292,32 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
                             l[b] += ray.t_ground[b] * a.ground_albedo[b] * albedo_over_pi * e_in;
                         }
                     }
+                    const double w = 2.0 * dw, w_up = ray.cos_t > 0.0 ? w * ray.cos_t : 0.0;
                     for (size_t b = 0; b < nb; ++b) {
-                        g[b] += 2.0 * l[b] * dw / (4.0 * kPiD);
-                        if (ray.cos_t > 0.0)
-                            e[b] += 2.0 * l[b] * ray.cos_t * dw;
+                        g[b] += w * l[b] / (4.0 * kPiD);
+                        e[b] += w_up * l[b];
                     }
+                    if (order == 1) {
+                        // Scattering angle of the first order: sun light (propagating along
+                        // -s) turned toward x (along -d): cos = s . d.
+                        const double nu = sin_s * ray.sin_t * cos_phi + mu_s * ray.cos_t;
+                        rayleigh_phase_bands(a, nu, p_r);
+                        const double p_m = eval_precise(a.mie_phase, nu);
+                        q_m += w * p_m;
+                        for (size_t b = 0; b < nb; ++b) {
+                            q_r[b] += w * p_r[b];
+                            g_r[b] += w * p_r[b] * l_r[b] / (4.0 * kPiD);
+                            g_m[b] += w * p_m * l_m[b] / (4.0 * kPiD);
+                            e_r[b] += w_up * p_r[b] * l_r[b];
+                            e_m[b] += w_up * p_m * l_m[b];
+                        }
+                    }
+                }
+            }
+            if (order == 1) {
+                for (size_t b = 0; b < nb; ++b) {
+                    g[b] += g_r[b] / q_r[b] + g_m[b] / q_m;
+                    e[b] += e_r[b] / q_r[b] + e_m[b] / q_m;
                 }
             }
             for (size_t b = 0; b < nb; ++b) {
@@ -343,7 +372,7 @@ void SkyLuts::sun_transmittance(const SkyScene& sky, const DVec3& p, Bands& out)
     const DVec3 up = up_vec / r;
     const double mu_s = std::clamp(glm::dot(up, sky.sun_direction), -1.0, 1.0);
     double sin_horizon = 0.0;
-    const double fraction = sun_disc_fraction(r, mu_s, m_rg, sky.sun_radius_rad, sin_horizon);
+    const double fraction = sun_disc_fraction(r, mu_s, m_rg, m_sun, sin_horizon);
     if (fraction <= 0.0) {
         for (int i = 0; i < m_bands; ++i)
             out[i] = 0.0;

@@ -3,7 +3,7 @@
 /// Atmosphere Rendering Technique", Computer Graphics Forum 39(4)):
 ///  - transmittance to the top of the atmosphere T(r, mu), 256 x 64, Bruneton's 2017
 ///    parametrisation (exact at the texel centres, bilinear between);
-///  - multiple scattering Psi_ms(r, mu_s), 128 x 32: the light scattered into orders 2 and up
+///  - multiple scattering Psi_ms(r, mu_s), 128 x 16: the light scattered into orders 2 and up
 ///    with an isotropic phase (Hillaire eqs. 5-10), its orders iterated through the table (as
 ///    in Bruneton & Neyret 2008) instead of Hillaire's local geometric series, which fails in
 ///    twilight; with it, the sky's irradiance on the ground per sun cosine;
@@ -22,6 +22,7 @@
 #include "sky/sky_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -77,12 +78,23 @@ class SkyLuts {
     /// Segments shorter than this (metres) are integrated in closed form from one node.
     static constexpr double kShortSegmentM = 1000.0;
     static constexpr int kTransmittanceW = 256, kTransmittanceH = 64;
-    static constexpr int kMultipleW = 128, kMultipleH = 32;
+    static constexpr int kMultipleW = 128, kMultipleH = 16;
     /// Orders of the multiple-scattering table computed by iteration (2 to kMultipleOrders + 1
     /// scattering events), then a geometric tail.
     static constexpr int kMultipleOrders = 4;
     /// Sky view: azimuths over [0, pi], elevations, nodes per marched texel.
     static constexpr int kSkyViewW = 96, kSkyViewH = 108, kSkyViewSteps = 40;
+
+    /// The sun's angular radius (radians) with its cosine and sine, evaluated once per table
+    /// instead of per node.
+    struct SunDisc {
+        double radius = 0.0, cos_radius = 1.0, sin_radius = 0.0;
+        SunDisc() = default;
+        explicit SunDisc(double radius_rad)
+            : radius(radius_rad),
+              cos_radius(std::cos(radius_rad)),
+              sin_radius(std::sin(radius_rad)) {}
+    };
 
   private:
     void build_multiple_scattering(const SkyScene& sky);
@@ -94,6 +106,7 @@ class SkyLuts {
                 Bands& out) const;
     int m_bands = 3;
     double m_rg = 0.0, m_rt = 0.0;
+    SunDisc m_sun;
     DVec3 m_camera{0.0};
     double m_camera_r = 0.0;
     DVec3 m_up{0.0, 1.0, 0.0}, m_forward{1.0, 0.0, 0.0}, m_side{0.0, 0.0, 1.0};  ///< sky-view frame

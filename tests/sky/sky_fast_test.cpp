@@ -7,11 +7,13 @@
 #include "sky/sky_reference.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <vector>
 
 namespace kasumi {
@@ -228,6 +230,38 @@ TEST(FastSky, SkyViewFiniteNonNegativeAndSeamlessInDeepTwilightAndFromSpace) {
                 EXPECT_LE(std::abs(ya - yb), 1e-3 * std::max(ya, yb) + 1e-12)
                     << camera_m << " m, sun " << sun_deg << ", elevation " << e;
             }
+        }
+    }
+}
+
+TEST(FastSky, TablesIdenticalWithOneAndTwoThreads) {
+    // The transmittance, multiple-scattering and ground-irradiance tables (built with
+    // tbb::parallel_for; each texel's sums in a fixed order) do not depend on the thread count:
+    // every lookup on a grid of radii and cosines equal bit for bit with 1 and 2 threads.
+    SunDesc sun;
+    sun.elevation_deg = 30.0;
+    const auto sky = make_sky_scene(default_earth_atmosphere(kRgbNm, kRgbNm), sun, {});
+    const auto build = [&](int threads) {
+        std::unique_ptr<SkyLuts> luts;
+        tbb::task_arena(threads).execute([&] { luts = std::make_unique<SkyLuts>(*sky); });
+        return luts;
+    };
+    const auto one = build(1), two = build(2);
+    const double rg = sky->atmosphere.ground_radius_m, rt = sky->atmosphere.top_radius_m;
+    for (int k = 0; k <= 20; ++k) {
+        const double r = rg + (rt - rg) * k * k / 400.0;
+        for (int m = -20; m <= 20; ++m) {
+            const double mu = m / 20.0;
+            Bands a{}, b{};
+            one->multiple_scattering(r, mu, a);
+            two->multiple_scattering(r, mu, b);
+            EXPECT_EQ(a, b) << "multiple scattering r " << r << " mu_s " << mu;
+            one->transmittance(r, mu, a);
+            two->transmittance(r, mu, b);
+            EXPECT_EQ(a, b) << "transmittance r " << r << " mu " << mu;
+            one->ground_sky_irradiance(mu, a);
+            two->ground_sky_irradiance(mu, b);
+            EXPECT_EQ(a, b) << "ground irradiance mu_s " << mu;
         }
     }
 }
