@@ -62,6 +62,7 @@ double AutoExposure::log2_luminance(int64_t frame) {
     options.frame = 0;  // a function of the document alone: equal documents meter equal
     options.aovs = 0;
     options.threads = m_threads;
+    options.progress = false;  // an internal render: its progress bar is not the frame's
     const RenderResult result = render_image(*runtime, options);
     m_cache.end_frame();
     const std::vector<FilmPlane> planes = result.film.planes(0);  // R, G, B, A

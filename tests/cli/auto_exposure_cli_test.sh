@@ -65,6 +65,8 @@ expect_exit 0 "" -- sequence "$work/step.json" --frames 0-59 --frame 40 -o "$wor
   --threads 1
 [ "$(stops one/f.0040.exr)" = "$(stops s/f.0040.exr)" ] ||
   fail "frame 40 alone: $(stops one/f.0040.exr), in the run: $(stops s/f.0040.exr)"
+# -q: nothing on stderr, not even the meter renders' progress (they metered here: a new directory).
+[ ! -s "$work/stderr" ] || fail "sequence -q printed: $(head -c 300 "$work/stderr")"
 # The store of meterings beside the frames (sequence/meter_store.h): one file per distinct
 # document (1000 lux and 100 lux), read by a later process instead of metering again, with
 # exactly the exposure of the run; unreadable files are misses, metered again and replaced.
