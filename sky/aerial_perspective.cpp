@@ -83,11 +83,11 @@ AerialPerspective::AerialPerspective(const SkyScene& sky, const SkyLuts& luts,
         // Running integrals from the camera, per band: single scattering without phase
         // (Rayleigh, Mie), multiple scattering, optical depth.
         Bands s_r{}, s_m{}, s_ms{}, tau{}, ts{}, ms{}, t{}, s_r0{}, s_r2{};
+        AtmosphereCoefficients co;
         Froxel& first = m_froxels[static_cast<size_t>(y) * kWidth + x];
-        for (int c = 0; c < 3; ++c) {
-            first.rayleigh[c] = first.rayleigh_mu2[c] = first.mie[c] = first.multiple[c] = 0.0f;
-            first.transmittance[c] = 1.0f;
-        }
+        first = Froxel{};
+        for (int c = 0; c < 3; ++c)
+            first.v[Froxel::kTransmittance + c] = 1.0f;
         for (int k = 1; k <= kSlices; ++k) {
             // The slice's part inside the atmosphere. Past the planet's ground (no surface lies
             // there, but lookups between this ray and a neighbour that meets the ground farther
@@ -105,8 +105,7 @@ AerialPerspective::AerialPerspective(const SkyScene& sky, const SkyLuts& luts,
                     const DVec3 xk = p + std::min(t0 + (i + 0.5) * dt, t_last) * d;
                     const DVec3 up_vec = xk - a.center();
                     const double r = glm::length(up_vec);
-                    const AtmosphereCoefficients co =
-                        atmosphere_coefficients(a, r - a.ground_radius_m);
+                    atmosphere_coefficients(a, r - a.ground_radius_m, co);
                     luts.sun_transmittance(sky, xk, ts);
                     luts.multiple_scattering(r, glm::dot(up_vec / r, sky.sun_direction), ms);
                     for (int b = 0; b < nb; ++b) {
@@ -124,11 +123,11 @@ AerialPerspective::AerialPerspective(const SkyScene& sky, const SkyLuts& luts,
                 s_r2[b] = phase_c2[b] * s_r[b];
             }
             Froxel& f = m_froxels[(static_cast<size_t>(k) * kHeight + y) * kWidth + x];
-            to_rgb3(s_r0, f.rayleigh);
-            to_rgb3(s_r2, f.rayleigh_mu2);
-            to_rgb3(s_m, f.mie);
-            to_rgb3(s_ms, f.multiple);
-            transmittance_rgb3(t, f.transmittance);
+            to_rgb3(s_r0, &f.v[Froxel::kRayleigh]);
+            to_rgb3(s_r2, &f.v[Froxel::kRayleighMu2]);
+            to_rgb3(s_m, &f.v[Froxel::kMie]);
+            to_rgb3(s_ms, &f.v[Froxel::kMultiple]);
+            transmittance_rgb3(t, &f.v[Froxel::kTransmittance]);
         }
     });
 }
@@ -151,20 +150,21 @@ bool AerialPerspective::lookup(const DVec3& d, double t, Rgb& radiance, Rgb& tra
     const int k0 = std::min(static_cast<int>(std::sqrt(tc / kDepthM) * kSlices), kSlices - 1);
     const double ta = slice_distance(k0), tb = slice_distance(k0 + 1);
     const float wz = static_cast<float>(std::clamp((tc - ta) / (tb - ta), 0.0, 1.0));
-    float r[3] = {0, 0, 0}, r2[3] = {0, 0, 0}, m[3] = {0, 0, 0}, ms[3] = {0, 0, 0};
-    float tr[3] = {0, 0, 0};
+    // Each float of the row accumulates over the corners in the same order as a per-value
+    // loop would (no fused operations: the same sums, bit for bit).
+    float sum[Froxel::kFloats] = {};
     for (int corner = 0; corner < 8; ++corner) {
         const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
         const float w = (dx ? wx : 1.0f - wx) * (dy ? wy : 1.0f - wy) * (dz ? wz : 1.0f - wz);
-        const Froxel& f = at(k0 + dz, y0 + dy, x0 + dx);
-        for (int c = 0; c < 3; ++c) {
-            r[c] += w * f.rayleigh[c];
-            r2[c] += w * f.rayleigh_mu2[c];
-            m[c] += w * f.mie[c];
-            ms[c] += w * f.multiple[c];
-            tr[c] += w * f.transmittance[c];
-        }
+        const float* f = at(k0 + dz, y0 + dy, x0 + dx).v;
+        for (int k = 0; k < Froxel::kFloats; ++k)
+            sum[k] += w * f[k];
     }
+    const float* r = &sum[Froxel::kRayleigh];
+    const float* r2 = &sum[Froxel::kRayleighMu2];
+    const float* m = &sum[Froxel::kMie];
+    const float* ms = &sum[Froxel::kMultiple];
+    const float* tr = &sum[Froxel::kTransmittance];
     const double mu = glm::dot(d, m_sun_direction);
     const auto mu2 = static_cast<float>(mu * mu);
     const auto p_m = static_cast<float>(eval_precise(m_mie_phase, mu));

@@ -75,8 +75,13 @@ class AerialPerspective {
     /// band b is c0_b + c2_b mu² (its depolarisation may depend on the wavelength), so its
     /// light is kept as the two sums over bands weighted by c0_b and by c2_b:
     /// radiance = rayleigh + mu² rayleigh_mu2, exact per band.
+    /// Five RGB values per froxel in one padded row of 16 floats (the lookup's trilinear sum
+    /// runs over the row as one vectorisable loop): Rayleigh without its phase as c0 and c2
+    /// parts, Mie without its phase, multiple scattering, transmittance.
     struct Froxel {
-        float rayleigh[3], rayleigh_mu2[3], mie[3], multiple[3], transmittance[3];
+        static constexpr int kRayleigh = 0, kRayleighMu2 = 3, kMie = 6, kMultiple = 9,
+                             kTransmittance = 12, kFloats = 16;
+        float v[kFloats] = {};
     };
     const Froxel& at(int slice, int y, int x) const {
         return m_froxels[(static_cast<size_t>(slice) * kHeight + y) * kWidth + x];

@@ -49,6 +49,11 @@ double DensityProfile::column_m(double top_altitude_m) const {
 
 AtmosphereCoefficients atmosphere_coefficients(const Atmosphere& a, double h) {
     AtmosphereCoefficients c;
+    atmosphere_coefficients(a, h, c);
+    return c;
+}
+
+void atmosphere_coefficients(const Atmosphere& a, double h, AtmosphereCoefficients& c) {
     const double d_r = a.rayleigh.profile.density(h);
     const double d_m = a.mie.profile.density(h);
     const double d_o = a.ozone.profile.density(h);
@@ -59,7 +64,6 @@ AtmosphereCoefficients atmosphere_coefficients(const Atmosphere& a, double h) {
                        d_m * a.mie.absorption[i] +
                        d_o * (a.ozone.scattering[i] + a.ozone.absorption[i]);
     }
-    return c;
 }
 
 Rayleigh rayleigh_sampling_phase(const Atmosphere& a) {

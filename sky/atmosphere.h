@@ -91,6 +91,9 @@ struct AtmosphereCoefficients {
 
 /// Coefficients at altitude h above the ground (metres).
 AtmosphereCoefficients atmosphere_coefficients(const Atmosphere& a, double h);
+/// The same into `out`, writing the atmosphere's bands only (no 3 x 64-band clearing per call:
+/// the marches' inner loops reuse one `out`).
+void atmosphere_coefficients(const Atmosphere& a, double h, AtmosphereCoefficients& out);
 
 /// Rayleigh phase function of band `band`, per steradian: Chandrasekhar's form with the band's
 /// depolarisation factor rho (Bucholtz 1995, eq. 12; phase/rayleigh.h),

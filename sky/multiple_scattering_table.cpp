@@ -9,6 +9,64 @@
 
 namespace kasumi {
 
+namespace {
+
+// Geometry per altitude row and direction zenith (sun independent): each node's radius,
+// its up vector's components along the direction's horizontal part (a) and the vertical
+// (b), T sigma_s dt per band split into Rayleigh and Mie (the first order's phases).
+struct Node {
+    double r, a, b;
+    int y0;             ///< the table row below the node's radius (its bilinear tap in r, which
+    double fy;          ///< stays for every order and sun cosine)
+    HorizonAt horizon;  ///< the first order's sun lookups at this radius
+    SkyLuts::TransmittanceRow sun_row;  ///< (sun_disc_fraction and transmittance, radius parts)
+};
+struct DirRay {
+    std::vector<Node> nodes;
+    std::vector<float> w_rayleigh, w_mie;  ///< [node][band] T sigma_s dt
+    std::vector<float> w_sum;              ///< w_rayleigh + w_mie (orders 2 and up)
+    bool ground = false;
+    double ground_a = 0.0, ground_b = 1.0;
+    std::vector<float> t_ground;  ///< [band]
+    double cos_t = 0.0, sin_t = 0.0;
+};
+
+/// The light of one order above the first along a direction ray, per band: the sum over its
+/// nodes of (T sigma_s dt) G_{n-1}(r, mu_y), G bilinear in the table `g` (W x H texels of nb
+/// bands) at the node's sun cosine mu_y = sin_s a cos_phi + mu_s b. NB > 0: the band count at
+/// compile time (RGB renders: 3), 0: `nb` at run time; the same sums either way.
+template <size_t NB>
+void add_order_light(const DirRay& ray, const float* g, size_t nb, double sin_s, double cos_phi,
+                     double mu_s, double* l) {
+    constexpr int W = SkyLuts::kMultipleW;
+    if (NB > 0)
+        nb = NB;
+    const float* w_sum = ray.w_sum.data();
+    for (const Node& node : ray.nodes) {
+        const double mu_y = sin_s * node.a * cos_phi + mu_s * node.b;
+        const double x = std::clamp(SkyLuts::multiple_u(mu_y) * W - 0.5, 0.0, W - 1.0);
+        const int x0 = std::min(static_cast<int>(x), W - 2);
+        const double fx = x - x0, fy = node.fy;
+        const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy,
+                     w11 = fx * fy;
+        const float* t00 = g + (static_cast<size_t>(node.y0) * W + x0) * nb;
+        const float* t10 = t00 + nb;
+        const float* t01 = t00 + W * nb;
+        const float* t11 = t01 + nb;
+        for (size_t b = 0; b < nb; ++b) {
+            double gy = 0.0;
+            gy += w00 * t00[b];
+            gy += w10 * t10[b];
+            gy += w01 * t01[b];
+            gy += w11 * t11[b];
+            l[b] += w_sum[b] * gy;
+        }
+        w_sum += nb;
+    }
+}
+
+}  // namespace
+
 void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
     // Multiple scattering, orders by iteration in an isotropic-phase approximation of the
     // higher orders (Hillaire 2020 §5.5 approximates every order above the second by the
@@ -29,22 +87,6 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
     constexpr int W = kMultipleW, H = kMultipleH;
     constexpr int kDirCos = 32, kDirAz = 8, kNodes = 12;  // kDirAz even (symmetry below)
     const double dw = 4.0 * kPiD / (kDirCos * kDirAz);
-    // Geometry per altitude row and direction zenith (sun independent): each node's radius,
-    // its up vector's components along the direction's horizontal part (a) and the vertical
-    // (b), T sigma_s dt per band split into Rayleigh and Mie (the first order's phases).
-    struct Node {
-        double r, a, b;
-        int y0;     ///< the table row below the node's radius (its bilinear tap in r, which
-        double fy;  ///< stays for every order and sun cosine)
-    };
-    struct DirRay {
-        std::vector<Node> nodes;
-        std::vector<float> w_rayleigh, w_mie;  ///< [node][band] T sigma_s dt
-        bool ground = false;
-        double ground_a = 0.0, ground_b = 1.0;
-        std::vector<float> t_ground;  ///< [band]
-        double cos_t = 0.0, sin_t = 0.0;
-    };
     std::vector<DirRay> rays(static_cast<size_t>(H * kDirCos));
     std::vector<double> altitude(H);
     for (int j = 0; j < H; ++j) {
@@ -68,11 +110,13 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
             const AtmosphereCoefficients co = atmosphere_coefficients(a, r - m_rg);
             const double y = std::clamp(multiple_v(r) * H - 0.5, 0.0, H - 1.0);
             const int y0 = std::min(static_cast<int>(y), H - 2);
-            ray.nodes.push_back({r, t * ray.sin_t / r, (m_rg + h + t * ray.cos_t) / r, y0, y - y0});
+            ray.nodes.push_back({r, t * ray.sin_t / r, (m_rg + h + t * ray.cos_t) / r, y0, y - y0,
+                                 horizon_at(r, m_rg, m_sun), transmittance_row(r)});
             for (size_t b = 0; b < nb; ++b) {
                 const double tr = std::exp(-(tau[b] + 0.5 * co.sigma_t[b] * dt));
                 ray.w_rayleigh.push_back(static_cast<float>(tr * co.sigma_s_rayleigh[b] * dt));
                 ray.w_mie.push_back(static_cast<float>(tr * co.sigma_s_mie[b] * dt));
+                ray.w_sum.push_back(ray.w_rayleigh.back() + ray.w_mie.back());
                 tau[b] += co.sigma_t[b] * dt;
             }
         });
@@ -84,45 +128,26 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
                 ray.t_ground.push_back(static_cast<float>(std::exp(-tau[b])));
         }
     });
-    // Sun transmittance at radius r, sun cosine mu_s there (disc fraction above the horizon).
-    const auto sun_t = [&](double r, double mu_s, double* out) {
-        double sin_horizon = 0.0;
-        const double fraction = sun_disc_fraction(r, mu_s, m_rg, m_sun, sin_horizon);
+    // Sun transmittance at a node (its radius's parts precomputed), sun cosine mu_s there (disc
+    // fraction above the horizon): SkyLuts::sun_transmittance's values, bit for bit.
+    const HorizonAt ground_horizon = horizon_at(m_rg, m_rg, m_sun);
+    const TransmittanceRow ground_row = transmittance_row(m_rg);
+    const auto sun_t = [&](const HorizonAt& horizon, const TransmittanceRow& row, double mu_s,
+                           double* out) {
+        const double fraction = sun_disc_fraction(horizon, mu_s, m_sun);
         if (fraction <= 0.0) {
             for (size_t b = 0; b < nb; ++b)
                 out[b] = 0.0;
             return;
         }
-        Bands t;
-        transmittance(r, std::max(mu_s, sin_horizon), t);
+        transmittance(row, std::max(mu_s, horizon.sin_horizon), out);
         for (size_t b = 0; b < nb; ++b)
-            out[b] = t[b] * fraction;
+            out[b] *= fraction;
     };
     std::vector<float> g_prev(static_cast<size_t>(W * H) * nb, 0.0f), g_next = g_prev;
     std::vector<float> e_prev(static_cast<size_t>(W) * nb, 0.0f), e_next = e_prev;
     std::vector<double> g_sum(g_prev.size(), 0.0), e_sum(e_prev.size(), 0.0);
     std::vector<double> g_last(g_prev.size(), 0.0), e_last(e_prev.size(), 0.0);
-    // Bilinear weights of G at (r, mu_s): four texel offsets and weights.
-    struct Tap {
-        size_t offset[4];
-        double weight[4];
-    };
-    const auto g_tap = [&](const Node& node, double mu_s) {
-        const double x = std::clamp(multiple_u(mu_s) * W - 0.5, 0.0, W - 1.0);
-        const int x0 = std::min(static_cast<int>(x), W - 2), y0 = node.y0;
-        const double fx = x - x0, fy = node.fy;
-        Tap tap;
-        const auto offset = [&](int xx, int yy) { return (static_cast<size_t>(yy) * W + xx) * nb; };
-        tap.offset[0] = offset(x0, y0);
-        tap.offset[1] = offset(x0 + 1, y0);
-        tap.offset[2] = offset(x0, y0 + 1);
-        tap.offset[3] = offset(x0 + 1, y0 + 1);
-        tap.weight[0] = (1 - fx) * (1 - fy);
-        tap.weight[1] = fx * (1 - fy);
-        tap.weight[2] = (1 - fx) * fy;
-        tap.weight[3] = fx * fy;
-        return tap;
-    };
     const auto e_at = [&](const std::vector<float>& e, double mu_s, int b) {
         const double x = std::clamp(multiple_u(mu_s) * W - 0.5, 0.0, W - 1.0);
         const int x0 = std::min(static_cast<int>(x), W - 2);
@@ -157,29 +182,25 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
                     std::fill_n(l.begin(), nb, 0.0);
                     std::fill_n(l_r.begin(), nb, 0.0);
                     std::fill_n(l_m.begin(), nb, 0.0);
-                    for (size_t n = 0; n < ray.nodes.size(); ++n) {
-                        const Node& node = ray.nodes[n];
-                        const double mu_y = sin_s * node.a * cos_phi + mu_s * node.b;
-                        if (order == 1) {
-                            sun_t(node.r, mu_y, ts.data());
+                    if (order == 1) {
+                        for (size_t n = 0; n < ray.nodes.size(); ++n) {
+                            const Node& node = ray.nodes[n];
+                            const double mu_y = sin_s * node.a * cos_phi + mu_s * node.b;
+                            sun_t(node.horizon, node.sun_row, mu_y, ts.data());
                             for (size_t b = 0; b < nb; ++b) {
                                 l_r[b] += ray.w_rayleigh[n * nb + b] * ts[b];
                                 l_m[b] += ray.w_mie[n * nb + b] * ts[b];
                             }
-                        } else {
-                            const Tap tap = g_tap(node, mu_y);
-                            for (size_t b = 0; b < nb; ++b) {
-                                double gy = 0.0;
-                                for (int q = 0; q < 4; ++q)
-                                    gy += tap.weight[q] * g_prev[tap.offset[q] + b];
-                                l[b] += (ray.w_rayleigh[n * nb + b] + ray.w_mie[n * nb + b]) * gy;
-                            }
                         }
+                    } else if (nb == 3) {
+                        add_order_light<3>(ray, g_prev.data(), nb, sin_s, cos_phi, mu_s, l.data());
+                    } else {
+                        add_order_light<0>(ray, g_prev.data(), nb, sin_s, cos_phi, mu_s, l.data());
                     }
                     if (ray.ground) {
                         const double mu_g = sin_s * ray.ground_a * cos_phi + mu_s * ray.ground_b;
                         if (order == 1)
-                            sun_t(m_rg, mu_g, ts.data());
+                            sun_t(ground_horizon, ground_row, mu_g, ts.data());
                         for (size_t b = 0; b < nb; ++b) {
                             const double e_in = order == 1
                                                     ? std::max(0.0, mu_g) * ts[b]

@@ -83,24 +83,47 @@ SkyLuts::SkyLuts(const SkyScene& sky) {
     build_multiple_scattering(sky);
 }
 
-double SkyLuts::multiple_u(double mu_s) {
-    return unit_to_texel(std::clamp(0.5 * (mu_s + 1.0), 0.0, 1.0), kMultipleW);
-}
-
 double SkyLuts::multiple_v(double r) const {
     return unit_to_texel(std::sqrt(std::clamp((r - m_rg) / (m_rt - m_rg), 0.0, 1.0)), kMultipleH);
 }
 
-void SkyLuts::transmittance(double r, double mu, Bands& out) const {
+SkyLuts::TransmittanceRow SkyLuts::transmittance_row(double r) const {
     const double big_h = std::sqrt(m_rt * m_rt - m_rg * m_rg);
-    r = std::clamp(r, m_rg, m_rt);
-    const double rho = std::sqrt(std::max(0.0, r * r - m_rg * m_rg));
-    const double d = distance_to_top(r, mu, m_rt);
-    const double d_min = m_rt - r, d_max = rho + big_h;
-    const double x_mu = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
-    lookup(*m_transmittance, kTransmittanceW, kTransmittanceH,
-           unit_to_texel(std::clamp(x_mu, 0.0, 1.0), kTransmittanceW),
-           unit_to_texel(rho / big_h, kTransmittanceH), out);
+    TransmittanceRow row;
+    row.r = std::clamp(r, m_rg, m_rt);
+    const double rho = std::sqrt(std::max(0.0, row.r * row.r - m_rg * m_rg));
+    row.d_min = m_rt - row.r;
+    row.d_max = rho + big_h;
+    // lookup()'s row: y in texels, its lower row and weight.
+    constexpr int h = kTransmittanceH;
+    const double y = std::clamp(unit_to_texel(rho / big_h, h) * h - 0.5, 0.0, h - 1.0);
+    row.y0 = std::max(0, std::min(static_cast<int>(y), h - 2));
+    row.y1 = std::min(row.y0 + 1, h - 1);
+    row.fy = y - row.y0;
+    return row;
+}
+
+void SkyLuts::transmittance(const TransmittanceRow& row, double mu, double* out) const {
+    const double d = distance_to_top(row.r, mu, m_rt);
+    const double x_mu = row.d_max > row.d_min ? (d - row.d_min) / (row.d_max - row.d_min) : 0.0;
+    constexpr int w = kTransmittanceW;
+    const double x =
+        std::clamp(unit_to_texel(std::clamp(x_mu, 0.0, 1.0), w) * w - 0.5, 0.0, w - 1.0);
+    const int x0 = std::max(0, std::min(static_cast<int>(x), w - 2));
+    const int x1 = std::min(x0 + 1, w - 1);
+    const double fx = x - x0, fy = row.fy;
+    const size_t nb = static_cast<size_t>(m_bands);
+    const std::vector<float>& table = *m_transmittance;
+    const float* a = &table[(static_cast<size_t>(row.y0) * w + x0) * nb];
+    const float* b = &table[(static_cast<size_t>(row.y0) * w + x1) * nb];
+    const float* c = &table[(static_cast<size_t>(row.y1) * w + x0) * nb];
+    const float* e = &table[(static_cast<size_t>(row.y1) * w + x1) * nb];
+    for (size_t i = 0; i < nb; ++i)
+        out[i] = (1 - fy) * ((1 - fx) * a[i] + fx * b[i]) + fy * ((1 - fx) * c[i] + fx * e[i]);
+}
+
+void SkyLuts::transmittance(double r, double mu, Bands& out) const {
+    transmittance(transmittance_row(r), mu, out.data());
 }
 
 void SkyLuts::sun_transmittance(const SkyScene& sky, const DVec3& p, Bands& out) const {
@@ -253,11 +276,12 @@ void SkyLuts::march_terms(const SkyScene& sky, const DVec3& p, const DVec3& d, d
     if (!air_stretch(a, p, d, t_max, t_enter, t_exit, t_end, ground))
         return;
     Bands tau{}, ts, ms;
+    AtmosphereCoefficients c;
     for_each_sky_node(a, p, d, t_enter, t_end, steps, [&](double t, double dt) {
         const DVec3 x = p + t * d;
         const DVec3 up_vec = x - a.center();
         const double r = glm::length(up_vec);
-        const AtmosphereCoefficients c = atmosphere_coefficients(a, r - m_rg);
+        atmosphere_coefficients(a, r - m_rg, c);
         sun_transmittance(sky, x, ts);
         multiple_scattering(r, glm::dot(up_vec / r, sky.sun_direction), ms);
         for (int i = 0; i < n; ++i) {
@@ -350,12 +374,14 @@ void SkyLuts::sky_view(const SkyScene& sky, const DVec3& d, Bands& out) const {
     const float* t10 = t00 + stride;
     const float* t01 = t00 + kSkyViewW * stride;
     const float* t11 = t01 + stride;
-    for (int k = 0; k < 3 * nb; ++k) {
-        terms[k / nb][k % nb] =
-            (1 - fy) * ((1 - fx) * t00[k] + fx * t10[k]) + fy * ((1 - fx) * t01[k] + fx * t11[k]);
+    for (int part = 0, k = 0; part < 3; ++part) {
+        for (int i = 0; i < nb; ++i, ++k) {
+            terms[part][i] = (1 - fy) * ((1 - fx) * t00[k] + fx * t10[k]) +
+                             fy * ((1 - fx) * t01[k] + fx * t11[k]);
+        }
     }
     const double mu = glm::dot(d, sky.sun_direction);
-    Bands p_r{};
+    Bands p_r;  // bands [0, nb) written below
     rayleigh_phase_bands(sky.atmosphere, mu, p_r);
     const double p_m = eval_precise(sky.atmosphere.mie_phase, mu);
     for (int i = 0; i < nb; ++i)

@@ -39,6 +39,16 @@ class SkyLuts {
 
     /// Transmittance from a point at radius r toward cosine mu (mu above the horizon), bilinear.
     void transmittance(double r, double mu, Bands& out) const;
+    /// The parts of transmittance() that depend on the radius alone (its table row among
+    /// them), for many cosines at one radius: transmittance(row, mu) equals
+    /// transmittance(r, mu) bit for bit.
+    struct TransmittanceRow {
+        double r = 0.0, d_min = 0.0, d_max = 0.0;
+        int y0 = 0, y1 = 0;
+        double fy = 0.0;
+    };
+    TransmittanceRow transmittance_row(double r) const;
+    void transmittance(const TransmittanceRow& row, double mu, double* out) const;
     /// Sun transmittance at world point p including the disc fraction above the horizon.
     void sun_transmittance(const SkyScene& sky, const DVec3& p, Bands& out) const;
     /// Multiple-scattering radiance per unit sigma_s at radius r, sun zenith cosine mu_s.
@@ -66,6 +76,14 @@ class SkyLuts {
     /// ground if the segment reaches it.
     void march(const SkyScene& sky, const DVec3& p, const DVec3& d, double t_max, int steps,
                Bands& radiance, Bands& transmittance) const;
+
+    /// The multiple-scattering table's texture coordinate of a sun cosine (texel centres on
+    /// mu_s = -1 and 1).
+    static double multiple_u(double mu_s) {
+        // unit_to_texel (sky_luts.cpp) of the cosine's unit coordinate, inline for the table build.
+        return 0.5 / kMultipleW +
+               std::clamp(0.5 * (mu_s + 1.0), 0.0, 1.0) * (1.0 - 1.0 / kMultipleW);
+    }
 
     /// Drops the multiple-scattering table (single scattering only), for measurements; call
     /// before build_sky_view.
@@ -100,7 +118,6 @@ class SkyLuts {
     void build_multiple_scattering(const SkyScene& sky);
     /// Texture coordinates of the multiple-scattering table (texel centres on mu_s = -1, 1,
     /// the ground and the top; altitude by its square root).
-    static double multiple_u(double mu_s);
     double multiple_v(double r) const;
     void lookup(const std::vector<float>& table, int w, int h, double u, double v,
                 Bands& out) const;

@@ -31,8 +31,9 @@ DVec3 sample_cosine(const DVec3& n, double u1, double u2) {
 Bands atmosphere_optical_depth(const Atmosphere& a, const DVec3& p, const DVec3& d, double t0,
                                double t1, int steps) {
     Bands tau{};
+    AtmosphereCoefficients c;
     for_each_sky_node(a, p, d, t0, t1, steps, [&](double t, double dt) {
-        const AtmosphereCoefficients c = atmosphere_coefficients(a, altitude(a, p + t * d));
+        atmosphere_coefficients(a, altitude(a, p + t * d), c);
         for (int i = 0; i < a.bands; ++i)
             tau[i] += c.sigma_t[i] * dt;
     });

@@ -14,4 +14,14 @@ namespace kasumi {
 double sun_disc_fraction(double r, double mu_s, double rg, const SkyLuts::SunDisc& sun,
                          double& sin_horizon);
 
+/// The parts of sun_disc_fraction() that depend on the radius alone, for many sun cosines at
+/// one radius (the multiple-scattering table's nodes): the horizon's cosine and sine and the
+/// sines of horizon +- radius.
+struct HorizonAt {
+    double cos_h = 1.0, sin_horizon = 0.0, upper = 0.0, lower = 0.0;
+};
+HorizonAt horizon_at(double r, double rg, const SkyLuts::SunDisc& sun);
+/// sun_disc_fraction() from the radius's HorizonAt: the same value, bit for bit.
+double sun_disc_fraction(const HorizonAt& h, double mu_s, const SkyLuts::SunDisc& sun);
+
 }  // namespace kasumi
