@@ -28,8 +28,8 @@ constexpr float kTailSurvival = 0.1f;
 /// the vdb_render bench cloud (docs/volumes.md, 3 voxels, 128² callgrind cost x 512² RMSE²):
 /// corrections in 4 rays of 10 for the camera and in half the shadow rays, each shadow
 /// correction mostly one march (c = 1), give variance x cost 0.050 against 0.163 for
-/// {0.1, 2} / {0.1, 2}: the corrections' variance is ~1/P(N >= 1), their cost ~P(N >= 1), and
-/// at 0.1 the variance dominated.
+/// {0.1, 2} / {0.1, 2} (both with stratified shadow orders): the corrections' variance goes as
+/// 1/P(N >= 1), their cost as P(N >= 1), and at 0.1 the variance dominated.
 constexpr SeriesRoulette kCameraRoulette{0.4, 2.0};
 constexpr SeriesRoulette kShadowRoulette{0.5, 1.0};
 
