@@ -13,21 +13,30 @@
 /// E_u[sum_k h g(t_k)] = integral of g for the deterministic g = f T_cam T_l (each t in the ray
 /// is a node for exactly one k and u). The factors:
 /// - T^_cam(t_k) = debiased_exp_about(tau_trap(t_k), ...): the pivot is the march's own trapezoid
-///   depth (a function of u only), the N_cam corrections (one roulette per ray, nine rays in ten
-///   take none) are independent jittered residual marches of the camera ray, whose running sums
-///   are unbiased depths for every prefix [t_min, t_k) at once (volume/unbiased_march.h,
-///   ResidualMarch::Prefix). The trapezoid's error is O(h²), so the corrections are small.
+///   depth (a function of u only), the N_cam corrections (one roulette per ray, SeriesRoulette
+///   {0.4, 2}: six rays in ten take none) are independent jittered residual marches of the
+///   camera ray, whose running sums are unbiased depths for every prefix [t_min, t_k) at once
+///   (volume/unbiased_march.h, ResidualMarch::Prefix).
 /// - T^_l(t_k) for a directional light over a grid medium with a light cache
-///   (volume/light_cache.h): debiased_exp_about(sigma_t D_cache(x_k), ...) with N_l (one
-///   roulette per node and light) independent residual marches along the shadow ray: the cached
-///   depth is only a control, so the cache's bias (Simpson, blur) no longer reaches the image;
-///   it only sets the variance. Other lights, and points off the cache's lattice, take the
-///   unbiased-march estimator of the shadow ray (light_term, scattered_direct_one).
+///   (volume/light_cache.h): debiased_exp_about(sigma_t D_cache(x_k), ...) with N_l independent
+///   residual marches along the shadow ray (SeriesRoulette {0.5, 1}): the cached depth is only a
+///   control, so the cache's bias (Simpson, blur) no longer reaches the image; it only sets the
+///   variance. N_l is drawn by inversion from v_k = frac(v_0 + k phi) (phi = 0.618..., v_0
+///   uniform per ray and light, k the lit node's index): each v_k is uniform and independent of
+///   that node's marches and of T^_cam, so each node's factor stays unbiased (the expectation of
+///   the sum is the sum of the nodes' expectations; only the variance sees the correlation), and
+///   the corrected nodes are spread evenly along the ray instead of clumping. Other lights, and
+///   points off the cache's lattice, take the unbiased-march estimator of the shadow ray
+///   (light_term, scattered_direct_one).
 /// - The camera march stops without bias: once the pivot's depth passes kTailDepth (T = 1e-4)
 ///   the ray continues with probability 1/10 and weight 10, then again every ln 10 of depth
 ///   (Russian roulette; Arvo & Kirk 1990).
 /// The transmittance returned is the same running estimate at the ray's end (0 for a ray the
 /// roulette ended). Single estimates are signed; their mean is the single scattering.
+/// For one grid medium with grey extinction, no emission and only cached directional lights
+/// (a cloud under the sun) the camera march walks the grid's bricks (volume/march_grid_walk.h,
+/// the biased march's fast path: the same nodes and trapezoid depth as march_walk), so the
+/// estimator is the same and only cheaper.
 #include "core/occlusion_query.h"
 #include "core/rng.h"
 #include "lights/light.h"

@@ -2,6 +2,7 @@
 
 #include "volume/equiangular.h"
 #include "volume/light_cache.h"
+#include "volume/march_grid_walk.h"
 #include "volume/march_lights.h"
 #include "volume/march_walk.h"
 #include "volume/scattered_direct.h"
@@ -40,10 +41,6 @@ bool directional_march_light(const Light& light, size_t index, const Ray& ray, c
     m.mu = scattering_cosine(wo, m.incident.wi);
     return true;
 }
-
-/// How many march nodes ahead march_single_grid prefetches the grid's voxels: the work of one
-/// node (~50 ns) is less than a load from memory (4 nodes ahead measured the same as 2).
-constexpr float kPrefetchNodes = 2.0f;
 
 /// The camera optical depth at which the marched single scattering stops (kTailTransmittance).
 const float kTailDepth = -std::log(kTailTransmittance);
@@ -126,67 +123,23 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
     const Vec3 d(g->world_to_index * Vec4(ray.direction, 0.0f));
     const float h = bounded_march_step(march_step_m(media, settings),
                                        static_cast<double>(span->second - span->first), counters);
-    float u = 0.0f;
-    bool started = false, in_run = false, stopped = false;
-    float run_end = 0.0f, t_prev = 0.0f, rho_prev = 0.0f;
-    BrickRef last;
-    double k = 0.0;
-    double depth = 0.0;  // integral of density along the ray so far (density · metres)
-    uint64_t lookups = 0, steps = 0;
+    uint64_t steps = 0;
     // The common cloud: one directional light, no surfaces to block it (sum of h rho T T_light
     // over the nodes, times the light's f E once).
     const GridLight* const single =
         n_lights == 1 && !grid_lights[0].blockable ? &grid_lights[0] : nullptr;
     float single_sum = 0.0f;
-    const auto close_run = [&] {
-        const float rho_end = DensityGrid::density_in(last, o + run_end * d);
-        ++lookups;
-        depth +=
-            0.5 * static_cast<double>(run_end - t_prev) * static_cast<double>(rho_prev + rho_end);
-    };
-    const DensityGrid& grid = *g->grid;
-    // The visit inlined into the walk's loop (GCC kept it a call per brick, its state in the
-    // closure's memory): callgrind, 256³ march 4, whole process 1013 M -> 969 M instructions.
-    const auto visit = [&](const BrickSpan& b, const BrickRef& brick)
-        __attribute__((always_inline)) {
-        if (!started) {
-            u = rng.next_float();  // drawn where the general path draws it: media ahead
-            started = true;
-        }
-        if (!in_run || b.t0 != run_end) {
-            if (in_run)
-                close_run();
-            in_run = true;
-            t_prev = b.t0;
-            rho_prev = DensityGrid::density_in(brick, o + b.t0 * d);
-            ++lookups;
-            k = std::max(std::ceil(static_cast<double>(b.t0 - ray.t_min) / h - u), 0.0);
-        }
-        run_end = b.t1;
-        last = brick;
-        for (;; k += 1.0) {
-            const float t = ray.t_min + static_cast<float>((u + k) * h);
-            if (!(t < b.t1))
-                break;
-            if (!(t > t_prev))
-                continue;
-            // The nodes are a few voxels apart, mostly in another brick each: start loading the
-            // voxels of the node kPrefetchNodes ahead while this one is lit (values unchanged).
-            // The light cache's lattice (~1 MB) stays in cache: prefetching it gained nothing.
-            const float t_ahead = t + kPrefetchNodes * h;
-            grid.prefetch(o + t_ahead * d);
-            const float rho = DensityGrid::density_in(brick, o + t * d);
-            ++lookups;
-            depth += 0.5 * static_cast<double>(t - t_prev) * static_cast<double>(rho_prev + rho);
-            t_prev = t;
-            rho_prev = rho;
+    // u drawn where the general path draws it: at the first brick (media ahead).
+    const GridMarch march = march_grid_nodes(
+        *g->grid, o, d, span->first, span->second, ray.t_min,
+        h, [&]() __attribute__((always_inline)) { return rng.next_float(); },
+        [&](float t, float rho, double depth, const BrickSpan&,
+            const BrickRef&) __attribute__((always_inline)) {
             const float tau = sigma_t * static_cast<float>(depth);
-            if (tau > kTailDepth) {
-                stopped = true;
+            if (tau > kTailDepth)
                 return false;
-            }
             if (!(rho > 0.0f) || n_lights == 0)
-                continue;
+                return true;
             ++steps;
             if (single != nullptr) {
                 // One light that nothing else can block, on its cache: no light loop, and its
@@ -194,7 +147,7 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
                 float integral = 0.0f;
                 if (single->cache->density_integral(single->line, t, integral)) {
                     single_sum += h * rho * std::exp(-(tau + sigma_t * integral));
-                    continue;
+                    return true;
                 }
             }
             for (size_t i = 0; i < n_lights; ++i) {
@@ -213,17 +166,14 @@ bool march_single_grid(const MediumSet& media, const std::vector<Light>& lights,
                                                           settings, h, rng, counters);
                 }
             }
-        }
-        return true;
-    };
-    grid.walk(o, d, span->first, span->second, visit);
+            return true;
+        },
+        [](const BrickSpan&, const BrickRef&) {});
     if (single != nullptr)
         result.radiance += single_sum * single->weight;
-    if (in_run && !stopped)
-        close_run();
-    counters.density_lookups += lookups;
+    counters.density_lookups += march.lookups;
     counters.steps += steps;
-    result.transmittance = Rgb(std::exp(-sigma_t * static_cast<float>(depth)));
+    result.transmittance = Rgb(std::exp(-sigma_t * static_cast<float>(march.depth)));
     return true;
 }
 

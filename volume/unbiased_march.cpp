@@ -164,8 +164,14 @@ std::optional<Rgb> unbiased_march_transmittance(const MediumSet& media, const Ra
 
 std::optional<Rgb> unbiased_march_about(const MediumSet& media, const Ray& ray, const DVec3& pivot,
                                         Pcg32& rng, VolumeCounters& counters) {
-    const SeriesRoulette roulette;
-    const int order = roulette.sample(rng.next_float());
+    const float order_u = rng.next_float();
+    return unbiased_march_about(media, ray, pivot, SeriesRoulette{}, order_u, rng, counters);
+}
+
+std::optional<Rgb> unbiased_march_about(const MediumSet& media, const Ray& ray, const DVec3& pivot,
+                                        const SeriesRoulette& roulette, float order_u, Pcg32& rng,
+                                        VolumeCounters& counters) {
+    const int order = roulette.sample(order_u);
     if (order == 0)
         return Rgb(glm::exp(-pivot));
     thread_local ResidualMarch march;

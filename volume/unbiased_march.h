@@ -13,6 +13,7 @@
 /// tau_bar² / (4 M) whatever the density does inside the bounds, and it is 0 where the bounds
 /// meet (constant bricks, homogeneous media: exact Beer-Lambert, zero variance).
 #include "core/rng.h"
+#include "volume/debiased_exp.h"
 #include "volume/in_scattering.h"
 #include "volume/medium_set.h"
 
@@ -125,5 +126,13 @@ std::optional<Rgb> unbiased_march_transmittance(const MediumSet& media, const Ra
 /// biased. Never throws, never NaN.
 std::optional<Rgb> unbiased_march_about(const MediumSet& media, const Ray& ray, const DVec3& pivot,
                                         Pcg32& rng, VolumeCounters& counters);
+
+/// unbiased_march_about with the order's law and uniform given: N = roulette.sample(order_u).
+/// Unbiased whenever order_u is uniform on [0, 1) and independent of the marches; it may be
+/// correlated with other calls' order_u (volume/debiased_march_single.h stratifies the orders
+/// of the shadow rays along one camera ray). Draws no random number for N = 0.
+std::optional<Rgb> unbiased_march_about(const MediumSet& media, const Ray& ray, const DVec3& pivot,
+                                        const SeriesRoulette& roulette, float order_u, Pcg32& rng,
+                                        VolumeCounters& counters);
 
 }  // namespace kasumi

@@ -7,7 +7,10 @@
 // Checked to fail (2026-12-04): a factor 1.02 planted in the camera transmittance at the nodes
 // fails all four radiance checks (two lights x two rays); dropping the camera corrections (the
 // pivot alone: the biased march's exp of a trapezoid depth, ~0.1% off at a one-voxel step)
-// fails the directional light's first ray.
+// fails the directional light's first ray. Checked again (2026-12-05, grid fast path, new
+// roulettes, stratified shadow orders): x1.02 on the grid path's camera transmittance fails
+// both directional radiance checks; x1.02 on the cached shadow term fails the directional and
+// the two-light (general path) radiance checks.
 #include "volume/debiased_march_single.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
@@ -135,16 +138,20 @@ Rgb fine_radiance(const MediumSet& media, const std::vector<Light>& lights, cons
 
 struct CloudCase {
     const char* name;
-    Light light;
+    std::vector<Light> lights;
 };
 
 TEST(DebiasedMarchSingle, MatchesAFineMarchOnAHeterogeneousCloud) {
+    const Light sun{"sun", DirectionalLight{glm::normalize(Vec3(-0.3f, -1.0f, 0.2f)), Rgb(3.0f)}};
+    const Light lamp{"lamp", PointLight{Vec3(20.0f, 48.0f, 18.0f), Rgb(4000.0f)}};
     const CloudCase cases[] = {
-        // Directional: the light cache's depth is the control of every shadow transmittance.
-        {"directional",
-         Light{"sun", DirectionalLight{glm::normalize(Vec3(-0.3f, -1.0f, 0.2f)), Rgb(3.0f)}}},
-        // Point: the shadow rays through the unbiased march (no cache).
-        {"point", Light{"lamp", PointLight{Vec3(20.0f, 48.0f, 18.0f), Rgb(4000.0f)}}},
+        // Directional: the light cache's depth is the control of every shadow transmittance
+        // (the grid path: the camera march along the bricks).
+        {"directional", {sun}},
+        // Point: the shadow rays through the unbiased march (no cache; the general path).
+        {"point", {lamp}},
+        // Both: the general path with the cached directional light's stratified orders.
+        {"both", {sun, lamp}},
     };
     const Ray rays[] = {
         {Vec3(-3.0f, 18.3f, 21.1f), glm::normalize(Vec3(1.0f, 0.1f, -0.05f)), 0.0f, kInfinity},
@@ -154,7 +161,7 @@ TEST(DebiasedMarchSingle, MatchesAFineMarchOnAHeterogeneousCloud) {
         for (const Ray& ray : rays) {
             const MediumSet media =
                 grid_media(smooth_cloud(), 0.08f, Bounds3{Vec3(0.0f), Vec3(39.0f)});
-            const std::vector<Light> lights{c.light};
+            const std::vector<Light>& lights = c.lights;
             const double reference = fine_radiance(media, lights, ray).g;
             const double reference_t = fine_depth(media, ray, kInfinity);
             ASSERT_GT(reference, 0.0) << c.name;
