@@ -85,8 +85,12 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
     const Atmosphere& a = sky.atmosphere;
     const size_t nb = static_cast<size_t>(m_bands);
     constexpr int W = kMultipleW, H = kMultipleH;
-    constexpr int kDirCos = 32, kDirAz = 8, kNodes = 12;  // kDirAz even (symmetry below)
-    const double dw = 4.0 * kPiD / (kDirCos * kDirAz);
+    // The first order (the sun's light, with the Mie forward peak) on kDirCos x kDirAz
+    // directions; the orders above it (isotropic phase, smooth in azimuth) on kDirCos x
+    // kDirAzHigh: half the work, dome PSNR within 0.02 dB at every sun of bench/sky_accuracy
+    // (16 x 8 for them lost 0.36 dB at 30 deg: the zenith angle matters, not the azimuth).
+    // Both azimuth counts even (symmetry below).
+    constexpr int kDirCos = 32, kDirAz = 8, kDirAzHigh = 4, kNodes = 12;
     std::vector<DirRay> rays(static_cast<size_t>(H * kDirCos));
     std::vector<double> altitude(H);
     for (int j = 0; j < H; ++j) {
@@ -156,9 +160,14 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
                fx * e[static_cast<size_t>(x0 + 1) * nb + b];
     };
     const double albedo_over_pi = 1.0 / kPiD;
-    std::array<double, kDirAz / 2> cos_phis{};
-    for (int az = 0; az < kDirAz / 2; ++az)
-        cos_phis[static_cast<size_t>(az)] = std::cos(2.0 * kPiD * (az + 0.5) / kDirAz);
+    const auto half_azimuth_cosines = [](int n_az) {
+        std::vector<double> cos_phis(static_cast<size_t>(n_az / 2));
+        for (int az = 0; az < n_az / 2; ++az)
+            cos_phis[static_cast<size_t>(az)] = std::cos(2.0 * kPiD * (az + 0.5) / n_az);
+        return cos_phis;
+    };
+    const std::vector<double> cos_phis_first = half_azimuth_cosines(kDirAz);
+    const std::vector<double> cos_phis_high = half_azimuth_cosines(kDirAzHigh);
     for (int order = 1; order <= kMultipleOrders; ++order) {
         tbb::parallel_for(0, W * H, [&](int texel) {
             const int i = texel % W, j = texel / W;
@@ -173,12 +182,13 @@ void SkyLuts::build_multiple_scattering(const SkyScene& sky) {
             // (the ground; every later order, isotropic).
             Bands g{}, e{}, l{}, ts{}, l_r{}, l_m{}, g_r{}, g_m{}, e_r{}, e_m{}, q_r{}, p_r{};
             double q_m = 0.0;
+            const std::vector<double>& cos_phis = order == 1 ? cos_phis_first : cos_phis_high;
+            const double dw = 4.0 * kPiD / (kDirCos * (order == 1 ? kDirAz : kDirAzHigh));
             for (int c = 0; c < kDirCos; ++c) {
                 const DirRay& ray = rays[static_cast<size_t>(j * kDirCos + c)];
                 // Azimuths phi and 2 pi - phi see the same sun cosines and scattering angles:
                 // half of them, counted twice.
-                for (int az = 0; az < kDirAz / 2; ++az) {
-                    const double cos_phi = cos_phis[static_cast<size_t>(az)];
+                for (const double cos_phi : cos_phis) {
                     std::fill_n(l.begin(), nb, 0.0);
                     std::fill_n(l_r.begin(), nb, 0.0);
                     std::fill_n(l_m.begin(), nb, 0.0);
