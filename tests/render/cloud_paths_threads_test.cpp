@@ -1,7 +1,8 @@
-// render.volume.splitting "sun" and render.volume.camera_transmittance "first_flight" (issue 19)
-// in a render of data/scenes/cloud.json: the same image for 1 and 2 threads (the weight window's
-// copies draw from their own pixel sample's stream), and a different one from today's settings
-// (so the equality is the techniques', not a fallback's).
+// render.volume.splitting "sun", render.volume.camera_transmittance "first_flight" and
+// render.volume.shadow_roulette (issue 19) in a render of data/scenes/cloud.json: the same image
+// for 1 and 2 threads (the weight window's copies draw from their own pixel sample's stream; the
+// light cache the roulette reads is built once, the same for any thread), and a different one
+// from today's settings (so the equality is the techniques', not a fallback's).
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "tests/render/quiet_render_options.h"
@@ -13,13 +14,15 @@
 namespace kasumi {
 namespace {
 
-Image render_cloud(const std::string& splitting, const std::string& camera, int threads) {
+Image render_cloud(const std::string& splitting, const std::string& camera, int threads,
+                   const std::string& shadow_roulette = "0") {
     SceneDesc desc = load_scene(KASUMI_SOURCE_DIR "/data/scenes/cloud.json",
                                 {{"/film/width", "48"},
                                  {"/film/height", "27"},
                                  {"/film/spp", "2"},
                                  {"/render/volume/splitting", "\"" + splitting + "\""},
-                                 {"/render/volume/camera_transmittance", "\"" + camera + "\""}});
+                                 {"/render/volume/camera_transmittance", "\"" + camera + "\""},
+                                 {"/render/volume/shadow_roulette", shadow_roulette}});
     const SceneRuntime runtime(std::move(desc));
     return render_image(runtime, quiet(threads)).film.to_image();
 }
@@ -37,6 +40,21 @@ TEST(CloudPaths, RenderIsTheSameForOneAndTwoThreads) {
             differs_from_today = differs_from_today || t->data != one.channels[c].data;
     }
     EXPECT_TRUE(differs_from_today);
+}
+
+TEST(CloudPaths, ShadowRouletteRenderIsTheSameForOneAndTwoThreads) {
+    const Image one = render_cloud("off", "first_flight", 1, "0.05");
+    const Image two = render_cloud("off", "first_flight", 2, "0.05");
+    const Image without = render_cloud("off", "first_flight", 2, "0");
+    ASSERT_EQ(one.channels.size(), two.channels.size());
+    bool differs = false;
+    for (size_t c = 0; c < one.channels.size(); ++c) {
+        ASSERT_EQ(one.channels[c].name, two.channels[c].name);
+        EXPECT_EQ(one.channels[c].data, two.channels[c].data) << one.channels[c].name;
+        if (const ImageChannel* t = without.find(one.channels[c].name))
+            differs = differs || t->data != one.channels[c].data;
+    }
+    EXPECT_TRUE(differs);
 }
 
 }  // namespace
