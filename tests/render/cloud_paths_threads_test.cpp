@@ -27,34 +27,30 @@ Image render_cloud(const std::string& splitting, const std::string& camera, int 
     return render_image(runtime, quiet(threads)).film.to_image();
 }
 
-TEST(CloudPaths, RenderIsTheSameForOneAndTwoThreads) {
-    const Image one = render_cloud("sun", "first_flight", 1);
-    const Image two = render_cloud("sun", "first_flight", 2);
-    const Image today = render_cloud("off", "walk", 2);
-    ASSERT_EQ(one.channels.size(), two.channels.size());
-    bool differs_from_today = false;
-    for (size_t c = 0; c < one.channels.size(); ++c) {
-        ASSERT_EQ(one.channels[c].name, two.channels[c].name);
-        EXPECT_EQ(one.channels[c].data, two.channels[c].data) << one.channels[c].name;
-        if (const ImageChannel* t = today.find(one.channels[c].name))
-            differs_from_today = differs_from_today || t->data != one.channels[c].data;
-    }
-    EXPECT_TRUE(differs_from_today);
-}
-
-TEST(CloudPaths, ShadowRouletteRenderIsTheSameForOneAndTwoThreads) {
-    const Image one = render_cloud("off", "first_flight", 1, "0.05");
-    const Image two = render_cloud("off", "first_flight", 2, "0.05");
-    const Image without = render_cloud("off", "first_flight", 2, "0");
+/// `one` and `two` (1 and 2 threads) have the same channels and pixels, and `other` (other
+/// settings) differs from them somewhere.
+void expect_same_and_differs_from(const Image& one, const Image& two, const Image& other) {
     ASSERT_EQ(one.channels.size(), two.channels.size());
     bool differs = false;
     for (size_t c = 0; c < one.channels.size(); ++c) {
         ASSERT_EQ(one.channels[c].name, two.channels[c].name);
         EXPECT_EQ(one.channels[c].data, two.channels[c].data) << one.channels[c].name;
-        if (const ImageChannel* t = without.find(one.channels[c].name))
+        if (const ImageChannel* t = other.find(one.channels[c].name))
             differs = differs || t->data != one.channels[c].data;
     }
     EXPECT_TRUE(differs);
+}
+
+TEST(CloudPaths, RenderIsTheSameForOneAndTwoThreads) {
+    expect_same_and_differs_from(render_cloud("sun", "first_flight", 1),
+                                 render_cloud("sun", "first_flight", 2),
+                                 render_cloud("off", "walk", 2));
+}
+
+TEST(CloudPaths, ShadowRouletteRenderIsTheSameForOneAndTwoThreads) {
+    expect_same_and_differs_from(render_cloud("off", "first_flight", 1, "0.05"),
+                                 render_cloud("off", "first_flight", 2, "0.05"),
+                                 render_cloud("off", "first_flight", 2, "0"));
 }
 
 }  // namespace

@@ -23,13 +23,15 @@ namespace {
 
 constexpr double kPi4 = 4.0 * 3.14159265358979323846;
 
+/// Residual ratio tracking with the roulette's `share` (0: off) and no depth limit (Russian
+/// roulette ends the paths).
 VolumeSettings tracker(VolumeIntegrator integrator, float share, int nee_points = 0) {
     VolumeSettings s;
-    s.integrator = integrator;
     s.estimator = Estimator::ResidualRatio;
-    s.shadow_roulette = share;
+    s.max_depth = 100000;
+    s.integrator = integrator;
     s.nee_points = nee_points;
-    s.max_depth = 100000;  // no truncation: Russian roulette ends the paths
+    s.shadow_roulette = share;
     return s;
 }
 
