@@ -4,6 +4,7 @@
 // light cache the roulette reads is built once, the same for any thread), and a different one
 // from today's settings (so the equality is the techniques', not a fallback's).
 #include "render/renderer.h"
+#include "scene/plan.h"
 #include "scene/scene_loader.h"
 #include "tests/render/quiet_render_options.h"
 
@@ -51,6 +52,20 @@ TEST(CloudPaths, ShadowRouletteRenderIsTheSameForOneAndTwoThreads) {
     expect_same_and_differs_from(render_cloud("off", "first_flight", 1, "0.05"),
                                  render_cloud("off", "first_flight", 2, "0.05"),
                                  render_cloud("off", "first_flight", 2, "0"));
+}
+
+TEST(CloudPaths, PlanNamesTheShadowRoulette) {
+    const auto in_scattering = [](const std::string& share) {
+        const SceneDesc desc = load_scene(KASUMI_SOURCE_DIR "/data/scenes/cloud.json",
+                                          {{"/render/volume/shadow_roulette", share}});
+        for (const PlanStage& stage : make_plan(desc).stages)
+            if (stage.name == "volume-in-scattering")
+                return stage.reason;
+        return std::string();
+    };
+    EXPECT_NE(in_scattering("0.05").find("Russian roulette on their expected contribution"),
+              std::string::npos);
+    EXPECT_EQ(in_scattering("0").find("roulette"), std::string::npos);
 }
 
 }  // namespace
