@@ -19,8 +19,8 @@ namespace kasumi {
 /// `occlusion` (null: no surfaces; lights with shadows "none" are never blocked). `known`: the
 /// coefficients already looked up at x (a tracker's collision), so a single medium's sigma_s is
 /// not looked up again. `path_weight`: the mean of the weight the caller multiplies the result
-/// by (the path throughput, 1/m⁻¹ · m = dimensionless times 1/sigma), which steers only
-/// render.volume.shadow_roulette.
+/// by (the path throughput; after a free flight it carries 1/sigma, so it is in metres and
+/// path_weight x sigma_s p is per steradian); it steers only render.volume.shadow_roulette.
 Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
                      const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                      const Vec3& wo, const VolumeSettings& settings, Pcg32& rng,
