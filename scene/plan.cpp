@@ -5,6 +5,7 @@
 #include "surface/emitter_hit.h"
 #include "surface/shadows/shadow_map.h"
 #include "volume/medium_set.h"
+#include "volume/scattered_direct.h"
 #include "volume/transmittance.h"
 
 #include <algorithm>
@@ -323,6 +324,27 @@ std::string path_roulette_summary(const VolumeSettings& volume) {
            "transmittance (Vorba & Krivanek 2016; not in guiding's training passes)";
 }
 
+/// Russian roulette of the trackers' shadow rays by their cached contribution
+/// (render.volume.shadow_roulette; volume/scattered_direct.h, contribution_survival).
+std::string shadow_roulette_summary(const SceneDesc& scene) {
+    const VolumeSettings& volume = scene.render.volume;
+    if (!(volume.shadow_roulette > 0.0f))
+        return std::string();
+    const bool one_grid =
+        scene.media.size() == 1 && std::holds_alternative<VdbMedium>(scene.media[0].model);
+    const bool sun = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) {
+        return std::holds_alternative<DirectionalLight>(l.emitter);
+    });
+    if (!one_grid || !sun)
+        return ", shadow_roulette skipped (it needs a directional light through one grid "
+               "medium, for the light cache)";
+    return ", shadow rays of directional lights by Russian roulette on their expected "
+           "contribution (path weight x sigma_s p x the light cache's T, against " +
+           format_g(volume.shadow_roulette) +
+           " of an isotropic lit scatterer's; traced with probability >= " +
+           format_g(kShadowSurvivalFloor) + ", weighted 1/q: unbiased)";
+}
+
 /// Where the camera segment's transmittance comes from (render.volume.camera_transmittance).
 std::string camera_transmittance_summary(const VolumeSettings& volume) {
     if (volume.camera_transmittance == CameraTransmittance::Walk)
@@ -413,7 +435,7 @@ Plan make_plan(const SceneDesc& scene) {
              : std::string(multiple ? "paths" : "single scattering") + ": free flights by " +
                    flight_summary(scene) +
                    " over per-brick majorants, next-event estimation to every light through " +
-                   estimator_name(volume.estimator) +
+                   estimator_name(volume.estimator) + shadow_roulette_summary(scene) +
                    (plan.shadow_rays ? ", shadowed by surfaces" : "")});
 
     plan.stages.push_back(

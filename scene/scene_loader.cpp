@@ -155,6 +155,8 @@ RenderSettings parse_render(const JsonNode& node, const FilmDesc& film) {
             render.volume.shadow_intervals = parse_int_in(*intervals, 0, 4096);
         if (auto roulette = volume.optional("nee_roulette"))
             render.volume.nee_roulette = roulette->as_bool();
+        if (auto share = volume.optional("shadow_roulette"))
+            render.volume.shadow_roulette = share->in_closed(0.0f, 1.0f);
         if (auto mis = volume.optional("spectral_mis"))
             render.volume.spectral_mis = mis->as_bool();
         if (auto flight = volume.optional("free_flight"))

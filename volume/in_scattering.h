@@ -60,6 +60,12 @@ struct VolumeSettings {
     /// and weighted 1/q, so scattering that sends less light toward the eye than an isotropic
     /// phase would mostly skips its transmittance walk. Unbiased.
     bool nee_roulette = false;
+    /// > 0: Russian roulette on next-event estimation by each shadow ray's expected
+    /// contribution (render.volume.shadow_roulette; volume/scattered_direct.cpp,
+    /// contribution_survival): the path weight x sigma_s p(mu) x the light cache's T, against
+    /// this share of an isotropic, fully lit, albedo-1 scatterer's. Replaces nee_roulette where
+    /// a light cache exists (a directional light through one grid). 0: off. Unbiased.
+    float shadow_roulette = 0.0f;
     /// > 0: the trackers' paths use ratio tracking for in-scattering with next-event
     /// estimation at this many collisions per path segment (volume/volume_path.cpp,
     /// tracked_path_radiance); 0: one free-flight scattering point per segment.

@@ -28,7 +28,34 @@ float nee_survival(const MediumSet& media, uint32_t mask, float mu) {
     return std::min(1.0f, std::max(kNeeSurvivalFloor, 4.0f * kPi * p));
 }
 
+float mean(const Rgb& c) {
+    return (c.r + c.g + c.b) * (1.0f / 3.0f);
+}
+
+/// Next-event estimation by Russian roulette with survival q: light_term / q or nothing.
+Rgb roulette_light_term(float q, const MediumSet& media, const Light& light,
+                        const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight& in,
+                        const Rgb& f, const VolumeSettings& settings, float step, Pcg32& rng,
+                        VolumeCounters& counters) {
+    if (q >= 1.0f)
+        return light_term(media, light, occlusion, x, in, f, std::nullopt, settings, step, rng,
+                          counters);
+    if (!(rng.next_float() < q))
+        return Rgb(0.0f);
+    return light_term(media, light, occlusion, x, in, f, std::nullopt, settings, step, rng,
+                      counters) /
+           q;
+}
+
 }  // namespace
+
+float contribution_survival(float expected, float share) {
+    const float q = 4.0f * kPi * expected / share;
+    // NaN (a 0/0 path weight) traces: the roulette never decides on an undefined value.
+    if (!(q < 1.0f))
+        return 1.0f;
+    return std::max(kShadowSurvivalFloor, q);
+}
 
 bool light_blocked(const OcclusionQuery* occlusion, const Vec3& x, const IncidentLight& in,
                    VolumeCounters& counters) {
@@ -56,7 +83,8 @@ Rgb light_term(const MediumSet& media, const Light& light, const OcclusionQuery*
 Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t light_index,
                          const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                          const Vec3& wo, const VolumeSettings& settings, float step, Pcg32& rng,
-                         VolumeCounters& counters, const PointCoefficients* known) {
+                         VolumeCounters& counters, const PointCoefficients* known,
+                         float path_weight) {
     // One sample per light: exact for delta lights, unbiased for extended ones (irradiance at
     // normal incidence over the pdf; no cosine inside a medium).
     const IncidentLight in = sample_incident(light, x, rng);
@@ -76,29 +104,33 @@ Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t ligh
         if (const LightTransmittanceCache* cache = media.light_cache(light_index, light))
             cached = cache->transmittance(x);
     }
-    if (settings.nee_roulette && !cached && !is_black(f)) {
-        // A cached transmittance costs no walk: no roulette then.
-        const float q = nee_survival(media, media_mask, mu);
-        if (q < 1.0f) {
-            if (!(rng.next_float() < q))
-                return Rgb(0.0f);
-            return light_term(media, light, occlusion, x, in, f, cached, settings, step, rng,
-                              counters) /
-                   q;
+    // A cached transmittance costs no walk: no roulette then.
+    if (settings.shadow_roulette > 0.0f && !cached && !is_black(f)) {
+        if (const LightTransmittanceCache* cache = media.light_cache(light_index, light)) {
+            // Outside the lattice is only the grid's rim: taken as lit.
+            const Rgb t = cache->transmittance(x).value_or(Rgb(1.0f));
+            const float q =
+                contribution_survival(path_weight * mean(f * t), settings.shadow_roulette);
+            return roulette_light_term(q, media, light, occlusion, x, in, f, settings, step, rng,
+                                       counters);
         }
     }
+    if (settings.nee_roulette && !cached && !is_black(f))
+        return roulette_light_term(nee_survival(media, media_mask, mu), media, light, occlusion, x,
+                                   in, f, settings, step, rng, counters);
     return light_term(media, light, occlusion, x, in, f, cached, settings, step, rng, counters);
 }
 
 Rgb scattered_direct(const MediumSet& media, const std::vector<Light>& lights,
                      const OcclusionQuery* occlusion, const Vec3& x, uint32_t media_mask,
                      const Vec3& wo, const VolumeSettings& settings, Pcg32& rng,
-                     VolumeCounters& counters, const PointCoefficients* known) {
+                     VolumeCounters& counters, const PointCoefficients* known, float path_weight) {
     const float step = march_step_m(media, settings);
     Rgb total(0.0f);
     for (size_t light_index = 0; light_index < lights.size(); ++light_index)
-        total += scattered_direct_one(media, lights[light_index], light_index, occlusion, x,
-                                      media_mask, wo, settings, step, rng, counters, known);
+        total +=
+            scattered_direct_one(media, lights[light_index], light_index, occlusion, x, media_mask,
+                                 wo, settings, step, rng, counters, known, path_weight);
     return total;
 }
 

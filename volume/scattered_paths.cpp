@@ -133,7 +133,7 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
         const Vec3 wo = -ray.direction;
         gather(throughput * scattered_direct(media, lights, occlusion, flight.position,
                                              flight.media_mask, wo, settings, rng, counters,
-                                             &flight.k));
+                                             &flight.k, mean(throughput)));
         if (settings.integrator == VolumeIntegrator::Single || ++depth >= settings.max_depth) {
             if (resume())
                 continue;
@@ -205,9 +205,10 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
                 while (next_pick < running) {
                     next_pick += 1.0f;
                     ++counters.scattering_events;
-                    gather((throughput * p.weight / (k * share)) *
-                           scattered_direct(media, lights, occlusion, p.position, p.media_mask, wo,
-                                            settings, rng, counters, &p.k));
+                    const Rgb pick_weight = throughput * p.weight / (k * share);
+                    gather(pick_weight * scattered_direct(media, lights, occlusion, p.position,
+                                                          p.media_mask, wo, settings, rng, counters,
+                                                          &p.k, mean(pick_weight)));
                 }
             }
         }

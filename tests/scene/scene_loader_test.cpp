@@ -130,7 +130,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"shapes": [{"type": "mesh", "file": "missing.obj", "material": "m"}],
                      "materials": {"m": {"type": "phong"}}})",
                  "missing.obj"},
-        BadScene{R"({"render": {"volume": {"step_m": 0}}})", "/render/volume/step_m"}));
+        BadScene{R"({"render": {"volume": {"step_m": 0}}})", "/render/volume/step_m"},
+        BadScene{R"({"render": {"volume": {"shadow_roulette": 1.5}}})",
+                 "/render/volume/shadow_roulette"},
+        BadScene{R"({"render": {"volume": {"shadow_roulette": -0.1}}})",
+                 "/render/volume/shadow_roulette"}));
 
 TEST(SceneLoader, MissingFileAndBadJson) {
     EXPECT_THROW(load_scene("/nonexistent/scene.json"), Error);
