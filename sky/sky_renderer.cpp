@@ -61,7 +61,8 @@ Bands SkyRenderer::radiance_bands(const DVec3& p, const DVec3& d, double t_max, 
             t_max >= 1e29 ? 24 : std::clamp(static_cast<int>(2.0 + t_max / 250.0), 2, 24);
         m_luts->march(sky, p, d, t_max, steps, radiance, t);
     }
-    if (sun_disc) {
+    // The disc adds nothing outside its radius (sun_disc is 0 there): no per-pixel spectrum.
+    if (sun_disc && glm::dot(d, sky.sun_direction) >= sky.sun_cos_radius) {
         const Bands disc = sky.sun_disc(glm::dot(d, sky.sun_direction));
         for (int i = 0; i < sky.bands(); ++i)
             radiance[i] += t[i] * disc[i];
