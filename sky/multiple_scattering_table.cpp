@@ -5,7 +5,6 @@
 #include "sky/sun_disc_fraction.h"
 
 #include <tbb/parallel_for.h>
-#include <array>
 
 namespace kasumi {
 

@@ -116,8 +116,8 @@ class SkyLuts {
 
   private:
     void build_multiple_scattering(const SkyScene& sky);
-    /// Texture coordinates of the multiple-scattering table (texel centres on mu_s = -1, 1,
-    /// the ground and the top; altitude by its square root).
+    /// The multiple-scattering table's texture coordinate of a radius (texel centres on the
+    /// ground and the top; altitude by its square root).
     double multiple_v(double r) const;
     void lookup(const std::vector<float>& table, int w, int h, double u, double v,
                 Bands& out) const;

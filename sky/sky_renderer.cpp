@@ -36,12 +36,13 @@ Bands SkyRenderer::radiance_bands(const DVec3& p, const DVec3& d, double t_max, 
         return s.radiance;
     }
     Bands radiance{}, t{};
+    const double cos_sun = glm::dot(d, sky.sun_direction);
+    const bool in_disc = sun_disc && cos_sun >= sky.sun_cos_radius;
     const bool from_camera = glm::length(p - m_camera) < 1e-3;
     if (from_camera && t_max >= 1e29) {
         m_luts->sky_view(sky, d, radiance);
         // The transmittance is needed only for the caller or behind the sun's disc.
-        const bool need_t = transmittance_out != nullptr ||
-                            (sun_disc && glm::dot(d, sky.sun_direction) >= sky.sun_cos_radius);
+        const bool need_t = transmittance_out != nullptr || in_disc;
         double t0 = 0.0, t1 = 0.0;
         bool ground = false;
         if (!need_t) {
@@ -62,8 +63,8 @@ Bands SkyRenderer::radiance_bands(const DVec3& p, const DVec3& d, double t_max, 
         m_luts->march(sky, p, d, t_max, steps, radiance, t);
     }
     // The disc adds nothing outside its radius (sun_disc is 0 there): no per-pixel spectrum.
-    if (sun_disc && glm::dot(d, sky.sun_direction) >= sky.sun_cos_radius) {
-        const Bands disc = sky.sun_disc(glm::dot(d, sky.sun_direction));
+    if (in_disc) {
+        const Bands disc = sky.sun_disc(cos_sun);
         for (int i = 0; i < sky.bands(); ++i)
             radiance[i] += t[i] * disc[i];
     }
