@@ -65,6 +65,29 @@ study cloud-step data/scenes/cloud.json --res 96x54 --repeats 3 \
 study cloud-scattering data/scenes/cloud.json --res 96x54 --repeats 3 \
   --vary /render/volume/integrator=single,multiple --vary spp=1,4,16 --reference-spp 512
 
+# Clouds, multiple scattering: the shadow-ray roulette x the camera segment's transmittance x
+# adaptive sampling x 4 seeds, against today's settings (what render.quality's levels choose:
+# scene/quality.cpp). Shipped from THREADS=1 runs; docs/studies/cloud-ms-sampling/
+# instructions.txt has the cost in instructions (callgrind) that the choice used. The 256³
+# cumulus is made here; the WDAS cloud needs ../shared/data.
+ms_sampling=(--vary spp=16,64 --vary /render/volume/shadow_roulette=0,0.05
+  --vary /render/volume/camera_transmittance=walk,first_flight --vary /film/noise_threshold=0,0.1
+  --vary /render/seed=1,2,3,4 --set '/render/volume/estimator="ratio"'
+  --reference-set /render/seed=999 --reference-set /render/volume/shadow_roulette=0
+  --reference-set '/render/volume/camera_transmittance="walk"' --reference-set /film/noise_threshold=0
+  --repeats 3)
+study cloud-ms-sampling data/scenes/cloud.json --res 96x54 --reference-spp 4096 "${ms_sampling[@]}"
+cumulus_256="${TMPDIR:-/tmp}/kasumi_cumulus_256.vdb"
+if [ "${#selected[@]}" -eq 0 ] || [[ " ${selected[*]} " =~ " cloud-ms-sampling-cumulus " ]]; then
+  "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
+fi
+study cloud-ms-sampling-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
+  --set "/media/0/file=\"$cumulus_256\"" "${ms_sampling[@]}"
+if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then
+  study cloud-ms-sampling-wdas data/scenes/cloud_wdas.json --res 64x64 --reference-spp 1024 \
+    "${ms_sampling[@]}"
+fi
+
 # Transmittance probes, estimator x samples: exact errors where a closed form exists. The
 # homogeneous fog against Beer-Lambert exp(-tau) (the march integrates tau analytically there,
 # so only the trackers are studied); the cloud's edge (T ~ 0.17) against ratio tracking at 1e6.

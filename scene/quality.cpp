@@ -76,6 +76,23 @@ namespace {
 //   2026-12-04): uniform 1.29 s, relative MSE 0.00294; threshold 0.05 0.95 s, 0.00333:
 //   1.2x the efficiency but 13% more error per render, not a win at equal error; the same
 //   study on fog_street.json did not finish (its 4096-spp reference takes > 6 min here).
+//   Threshold 0.1 at 64 spp (docs/studies/cloud-ms-sampling*, 2026-12-05) biases the WDAS
+//   cloud's mean luminance by -2.6% to -3.2% (4 seeds; without it +0.2%): its pixels'
+//   luminance is heavy-tailed, and a pixel whose first 16 samples miss the rare bright paths
+//   has a low mean with a small spread and stops (the early-stop bias, render/
+//   adaptive_sampling.h; -0.4% on cloud.json): not set by any level.
+// - grid_shadow_roulette and grid_camera_transmittance, multiple scattering in VDB media
+//   (docs/studies/cloud-ms-sampling*, 2026-12-05; estimator ratio, 16 spp, seeds 1-4, against
+//   a 1024-spp (4096 for cloud.json) reference of today's settings; cost in instructions of
+//   the whole process by callgrind, one thread, because the machine's load made the wall
+//   times of the study noisy): efficiency 1/(rel. MSE x instructions) against walk without
+//   roulette, for first_flight / shadow_roulette 0.05 / both:
+//   cloud.json 1.17x / 1.40x / 1.47x (rel. MSE 0.0474 -> 0.0416, 567 -> 439 M instructions),
+//   WDAS 1.32x / 1.33x / 1.49x (0.1004 -> 0.0944, 1015 -> 727 M), the 256³ cumulus 0.91x /
+//   0.94x / 0.93x (0.0429 -> 0.0551, 588 -> 491 M: its finer rim adds the first flight's
+//   T(1 - T) L² variance). Both win 1.5x on two of the three clouds and lose 7% on the third,
+//   so draft, default and final take both; reference keeps today's estimators. The expected
+//   cloud errors of default and final are the study's (0.0416 at 16 spp, 0.0111 at 64).
 // - render.volume.free_flight (decomposition tracking) and nee_roulette: no level sets them.
 //   cloud.json, multiple scattering, 16 spp, six seeds (docs/volumes.md, decomposition
 //   tracking, 2026-12-04): efficiency 38 /s today against 43 decomposition, 42 nee_roulette, 45
@@ -84,13 +101,13 @@ namespace {
 //   at load 15-19): no win at equal error on all three clouds.
 constexpr QualityPreset kTable[] = {
     {QualityLevel::Draft, 4, 1.6, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008, 4.0, "march",
-     0.000244, "unbiased-march"},
-    {QualityLevel::Default, 16, 1.6, "ratio", 4, 0.1, 0.00134, 0.0358, 0.0073, 4.0, "march", 0.088,
-     "unbiased-march"},
-    {QualityLevel::Final, 64, 1.6, "ratio", 4, 0.02, 0.000335, 0.009, 0.0073, 4.0, "march", 0.022,
-     "unbiased-march"},
+     0.000244, "unbiased-march", 0.05f, "first_flight"},
+    {QualityLevel::Default, 16, 1.6, "ratio", 4, 0.1, 0.00134, 0.0416, 0.0073, 4.0, "march", 0.088,
+     "unbiased-march", 0.05f, "first_flight"},
+    {QualityLevel::Final, 64, 1.6, "ratio", 4, 0.02, 0.000335, 0.0111, 0.0073, 4.0, "march", 0.022,
+     "unbiased-march", 0.05f, "first_flight"},
     {QualityLevel::Reference, 256, 0.2, "ratio", 16, 0.0, 8.9e-5, 0.0028, 0.00023, 1.0, "march",
-     0.0054, "unbiased-march"},
+     0.0054, "unbiased-march", 0.0f, "walk"},
 };
 
 bool is_extended_light(const Json& light) {
@@ -288,12 +305,44 @@ std::string scattering_bound_text(const ScatteringBound& b) {
            " (bound omega p / (1 - omega p), p = 1 - exp(-tau))";
 }
 
+namespace {
+
+/// With multiple scattering in VDB media: the level's shadow roulette and camera
+/// transmittance where the scene leaves them unset.
+void choose_multiple_scattering_sampling(const SceneDocument& doc, const QualityPreset& preset,
+                                         VolumeSettings& volume, QualityChoice& choice) {
+    const char* roulette = "/render/volume/shadow_roulette";
+    if (doc.contains(roulette)) {
+        choice.kept.push_back(roulette);
+    } else if (preset.grid_shadow_roulette > 0.0f) {
+        volume.shadow_roulette = preset.grid_shadow_roulette;
+        choice.applied.push_back(std::string(roulette) + " = " + g3(preset.grid_shadow_roulette) +
+                                 " (multiple scattering)");
+    }
+    const char* camera_t = "/render/volume/camera_transmittance";
+    if (doc.contains(camera_t)) {
+        choice.kept.push_back(camera_t);
+    } else if (std::string(preset.grid_camera_transmittance) == "first_flight") {
+        volume.camera_transmittance = CameraTransmittance::FirstFlight;
+        choice.applied.push_back(std::string(camera_t) +
+                                 " = \"first_flight\" (multiple scattering)");
+    }
+}
+
+}  // namespace
+
 void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& media,
                        VolumeSettings& volume, QualityChoice& choice) {
     if (!choice.level)
         return;
+    const QualityPreset& preset = quality_preset(*choice.level);
+    const bool grid = std::any_of(media.begin(), media.end(), [](const Medium& m) {
+        return std::holds_alternative<VdbMedium>(m.model);
+    });
     if (doc.contains("/render/volume/integrator")) {
         choice.integrator = "render.volume.integrator given by the scene";
+        if (grid && volume.integrator == VolumeIntegrator::Multiple)
+            choose_multiple_scattering_sampling(doc, preset, volume, choice);
         return;
     }
     const ScatteringBound b = scattering_bound(media);
@@ -301,20 +350,19 @@ void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& medi
         choice.integrator = "media do not scatter";
         return;
     }
-    const double tolerance = quality_preset(*choice.level).single_scattering_tolerance;
+    const double tolerance = preset.single_scattering_tolerance;
     const bool single = b.bound <= tolerance;
     volume.integrator = single ? VolumeIntegrator::Single : VolumeIntegrator::Multiple;
     choice.integrator = std::string(single ? "single" : "multiple") + " scattering chosen by " +
                         quality_name(*choice.level) + " (tolerance " +
                         (std::isinf(tolerance) ? std::string("any") : g3(100.0 * tolerance) + "%") +
                         "): " + scattering_bound_text(b);
-    const bool grid = std::any_of(media.begin(), media.end(), [](const Medium& m) {
-        return std::holds_alternative<VdbMedium>(m.model);
-    });
+    if (grid && !single)
+        choose_multiple_scattering_sampling(doc, preset, volume, choice);
     const auto applied = std::find_if(
         choice.applied.begin(), choice.applied.end(),
         [](const std::string& a) { return a.rfind("/render/volume/estimator = ", 0) == 0; });
-    const auto estimator = estimator_from_name(quality_preset(*choice.level).grid_single_estimator);
+    const auto estimator = estimator_from_name(preset.grid_single_estimator);
     if (single && grid && applied != choice.applied.end() && estimator) {
         volume.estimator = *estimator;
         *applied = std::string("/render/volume/estimator = \"") + estimator_name(*estimator) +

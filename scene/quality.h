@@ -40,6 +40,11 @@ struct QualityPreset {
     /// render.volume.estimator with VDB media when the level chooses single scattering
     /// (replaces grid_estimator there; choose_integrator)
     const char* grid_single_estimator;
+    /// Multiple scattering in VDB media (choose_integrator): render.volume.shadow_roulette
+    /// (0: off) and render.volume.camera_transmittance, from the cloud studies of the three
+    /// clouds (quality.cpp).
+    float grid_shadow_roulette;
+    const char* grid_camera_transmittance;
 };
 
 const QualityPreset& quality_preset(QualityLevel level);
@@ -86,7 +91,9 @@ ScatteringBound scattering_bound(const std::vector<Medium>& media);
 /// reason in choice.integrator. Without a level, or with the integrator given, leaves it.
 /// When it chooses single scattering for VDB media and the level (not the scene) set the
 /// estimator, the estimator becomes the level's grid_single_estimator (recorded in
-/// choice.applied).
+/// choice.applied). With multiple scattering (chosen, or given by the scene) in VDB media, it
+/// sets render.volume.shadow_roulette and camera_transmittance to the level's values where the
+/// scene leaves them unset (recorded in choice.applied or choice.kept).
 void choose_integrator(const SceneDocument& doc, const std::vector<Medium>& media,
                        VolumeSettings& volume, QualityChoice& choice);
 

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -205,10 +206,8 @@ TEST(ScatteringBound, ChoosesSingleOnlyWithinTolerance) {
     EXPECT_EQ(choose(R"({"render": {}})", thick), VolumeIntegrator::Single);
 }
 
-TEST(ScatteringBound, SingleScatteredCloudsTakeTheLevelsSingleScatteringEstimator) {
-    // A thick cloud: draft chooses single scattering and, with the estimator left to the level,
-    // the level's grid_single_estimator; default chooses multiple and keeps grid_estimator; an
-    // estimator the scene gives is kept.
+/// A 16³-voxel cube of density 1 and sigma_s 2 per voxel: optically thick (tau ~ 20).
+std::vector<Medium> thick_cloud() {
     auto grid = std::make_shared<DensityGrid>(IVec3(0), IVec3(15));
     for (int z = 0; z < 16; ++z)
         for (int y = 0; y < 16; ++y)
@@ -219,7 +218,14 @@ TEST(ScatteringBound, SingleScatteredCloudsTakeTheLevelsSingleScatteringEstimato
     v.grid = grid;
     v.sigma_s_per_density = Rgb(2.0f);
     v.bounds_world = Bounds3{Vec3(0.0f), Vec3(15.0f)};
-    const std::vector<Medium> cloud{Medium{"cloud", v}};
+    return {Medium{"cloud", v}};
+}
+
+TEST(ScatteringBound, SingleScatteredCloudsTakeTheLevelsSingleScatteringEstimator) {
+    // A thick cloud: draft chooses single scattering and, with the estimator left to the level,
+    // the level's grid_single_estimator; default chooses multiple and keeps grid_estimator; an
+    // estimator the scene gives is kept.
+    const std::vector<Medium> cloud = thick_cloud();
     auto choose = [&](const std::string& render) {
         const std::string text =
             R"({"media": [{"type": "vdb", "file": "x.vdb"}], "render": )" + render + "}";
@@ -243,6 +249,58 @@ TEST(ScatteringBound, SingleScatteredCloudsTakeTheLevelsSingleScatteringEstimato
         choose(R"({"quality": "draft", "volume": {"estimator": "delta"}})");
     EXPECT_EQ(given.integrator, VolumeIntegrator::Single);
     EXPECT_EQ(given.estimator, Estimator::Delta);
+}
+
+TEST(ScatteringBound, MultiplyScatteredCloudsTakeTheLevelsShadowRouletteAndCameraTransmittance) {
+    // A thick cloud rendered with multiple scattering (chosen by the level or given by the
+    // scene): the level's shadow roulette and first-flight camera transmittance, unless the
+    // scene sets them; single scattering (draft) and the reference level leave them off.
+    const std::vector<Medium> cloud = thick_cloud();
+    struct Chosen {
+        VolumeSettings volume;
+        QualityChoice choice;
+        SceneDocument doc;
+    };
+    auto choose = [&](const std::string& render) {
+        const std::string text =
+            R"({"media": [{"type": "vdb", "file": "x.vdb"}], "render": )" + render + "}";
+        SceneDocument doc(parse_json_text(text, "t.json"), "t.json");
+        QualityChoice c = apply_quality(doc);
+        VolumeSettings volume;
+        if (doc.contains("/render/volume/integrator"))
+            volume.integrator = doc.get("/render/volume/integrator").get<std::string>() == "single"
+                                    ? VolumeIntegrator::Single
+                                    : VolumeIntegrator::Multiple;
+        choose_integrator(doc, cloud, volume, c);
+        return Chosen{volume, c, doc};
+    };
+    const Chosen by_default = choose(R"({"quality": "default"})");
+    EXPECT_EQ(by_default.volume.integrator, VolumeIntegrator::Multiple);
+    EXPECT_FLOAT_EQ(by_default.volume.shadow_roulette,
+                    quality_preset(QualityLevel::Default).grid_shadow_roulette);
+    EXPECT_GT(by_default.volume.shadow_roulette, 0.0f);
+    EXPECT_EQ(by_default.volume.camera_transmittance, CameraTransmittance::FirstFlight);
+    const Chosen final_level = choose(R"({"quality": "final"})");
+    EXPECT_EQ(final_level.volume.camera_transmittance, CameraTransmittance::FirstFlight);
+    EXPECT_FALSE(final_level.doc.contains("/film/noise_threshold"));  // biased on WDAS
+    // Given by the scene: the integrator (multiple) and the roulette; the camera transmittance
+    // still comes from the level.
+    const Chosen given = choose(
+        R"({"quality": "default", "volume": {"integrator": "multiple", "shadow_roulette": 0}})");
+    EXPECT_EQ(given.volume.shadow_roulette, 0.0f);
+    EXPECT_EQ(given.volume.camera_transmittance, CameraTransmittance::FirstFlight);
+    EXPECT_NE(std::find(given.choice.kept.begin(), given.choice.kept.end(),
+                        "/render/volume/shadow_roulette"),
+              given.choice.kept.end());
+    const Chosen draft = choose(R"({"quality": "draft"})");
+    EXPECT_EQ(draft.volume.integrator, VolumeIntegrator::Single);
+    EXPECT_EQ(draft.volume.shadow_roulette, 0.0f);
+    EXPECT_EQ(draft.volume.camera_transmittance, CameraTransmittance::Walk);
+    const Chosen reference = choose(R"({"quality": "reference"})");
+    EXPECT_EQ(reference.volume.integrator, VolumeIntegrator::Multiple);
+    EXPECT_EQ(reference.volume.shadow_roulette, 0.0f);
+    EXPECT_EQ(reference.volume.camera_transmittance, CameraTransmittance::Walk);
+    EXPECT_FALSE(reference.doc.contains("/film/noise_threshold"));
 }
 
 }  // namespace
