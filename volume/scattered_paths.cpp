@@ -92,14 +92,32 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
         recorder.add(contribution);
     };
     // Training paths stay single (one record chain per path): the window runs when rendering.
-    const bool window = settings.splitting == PathSplitting::Sun &&
-                        settings.integrator == VolumeIntegrator::Multiple &&
-                        (guiding == nullptr || guiding->records == nullptr);
+    const bool rendering = guiding == nullptr || guiding->records == nullptr;
+    const bool multiple = settings.integrator == VolumeIntegrator::Multiple;
+    const GuidingField* learnt =
+        settings.splitting == PathSplitting::Guided && multiple && rendering && guiding != nullptr
+            ? guiding->field
+            : nullptr;
+    const bool window =
+        (settings.splitting == PathSplitting::Sun && multiple && rendering) || learnt != nullptr;
+    // The field steers directions only when render.volume.guiding is on (it may exist for the
+    // window alone); the recorder keeps the caller's records either way.
+    PathGuiding steer;
+    const PathGuiding* directions = guiding;
+    if (guiding != nullptr && !settings.guiding.enabled) {
+        steer = *guiding;
+        steer.field = nullptr;
+        directions = &steer;
+    }
     // The copies the window made wait here; a nested call (the environment's own paths) works
     // above `base` and leaves the stack as it found it.
     thread_local std::vector<PendingVertex> pending;
     const size_t base = pending.size();
-    float window_centre = 0.0f;
+    // "guided": centred on the pixel's training estimate when the segment is a camera ray;
+    // otherwise (and for "sun") on the path's expected contribution at its first vertex.
+    float window_centre = learnt != nullptr ? learnt->pixel_estimates().at(camera_segment) : 0.0f;
+    if (!(window_centre > 0.0f) || !std::isfinite(window_centre))
+        window_centre = 0.0f;
     Ray ray = camera_segment;
     int depth = 0;
     // Continues the next waiting copy, if any, by its own direction; false: none is left.
@@ -109,7 +127,7 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             pending.pop_back();
             throughput = v.throughput;
             depth = v.depth;
-            if (scatter_onward(media, v.position, v.mask, v.k, v.wo, depth, environment, guiding,
+            if (scatter_onward(media, v.position, v.mask, v.k, v.wo, depth, environment, directions,
                                recorder, rng, throughput, ray, false))
                 return true;
         }
@@ -140,12 +158,18 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             break;
         }
         if (window) {
-            // Expected contribution beta I(x) against the centre set at the first vertex.
+            // Expected contribution beta I(x) against the window's centre.
             const float expected =
-                mean(throughput) * sun_importance(media, lights, flight.position);
-            if (depth == 1)
+                learnt != nullptr
+                    ? guided_expected(*learnt, flight.position, wo, mean(flight.k.sigma_s),
+                                      mean(throughput))
+                    : mean(throughput) * sun_importance(media, lights, flight.position);
+            if (!(window_centre > 0.0f) && expected > 0.0f && std::isfinite(expected))
                 window_centre = expected;
-            const SplitDecision split = split_decision(expected / window_centre, rng.next_float());
+            const SplitDecision split =
+                split_decision(learnt != nullptr ? window_ratio(expected, window_centre)
+                                                 : expected / window_centre,
+                               rng.next_float());
             throughput *= split.weight;
             for (int c = 1; c < split.copies; ++c)
                 pending.push_back(
@@ -157,7 +181,7 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             }
         }
         if (!scatter_onward(media, flight.position, flight.media_mask, flight.k, wo, depth,
-                            environment, guiding, recorder, rng, throughput, ray, !window)) {
+                            environment, directions, recorder, rng, throughput, ray, !window)) {
             if (resume())
                 continue;
             break;
@@ -179,6 +203,13 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         radiance += contribution;
         recorder.add(contribution);
     };
+    PathGuiding steer;
+    const PathGuiding* directions = guiding;
+    if (guiding != nullptr && !settings.guiding.enabled) {
+        steer = *guiding;
+        steer.field = nullptr;
+        directions = &steer;
+    }
     Ray ray = camera_segment;
     for (int depth = 0;;) {
         const bool last =
@@ -249,7 +280,7 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         }
         ++depth;
         throughput *= flight_weight;
-        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, guiding,
+        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, directions,
                             recorder, rng, throughput, ray))
             break;
     }
