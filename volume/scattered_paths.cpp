@@ -7,6 +7,7 @@
 #include "volume/transmittance.h"
 #include "volume/weight_window.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace kasumi {
@@ -15,6 +16,9 @@ namespace {
 
 /// Paths play Russian roulette from this many scattering events on.
 constexpr int kRouletteDepth = 3;
+
+/// render.volume.splitting "guided": at most this many window copies wait per camera path.
+constexpr size_t kMaxWaitingCopies = 64;
 
 /// The next path vertex after a scattering event at `position`: a direction from the media's
 /// phase mixture, or, where `guiding` has a guide for the point (one medium there), from the
@@ -166,10 +170,14 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
                     : mean(throughput) * sun_importance(media, lights, flight.position);
             if (!(window_centre > 0.0f) && expected > 0.0f && std::isfinite(expected))
                 window_centre = expected;
-            const SplitDecision split =
-                split_decision(learnt != nullptr ? window_ratio(expected, window_centre)
-                                                 : expected / window_centre,
-                               rng.next_float());
+            float q = learnt != nullptr ? window_ratio(expected, window_centre)
+                                        : expected / window_centre;
+            // "guided": no splits while kMaxWaitingCopies copies wait (q decided from the past
+            // alone, so still unbiased): a field that underestimates I somewhere can otherwise
+            // roulette paths to large weights that split again and again.
+            if (learnt != nullptr && pending.size() - base >= kMaxWaitingCopies)
+                q = std::min(q, 1.0f);
+            const SplitDecision split = split_decision(q, rng.next_float());
             throughput *= split.weight;
             for (int c = 1; c < split.copies; ++c)
                 pending.push_back(
