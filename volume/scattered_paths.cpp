@@ -73,6 +73,18 @@ float mean(const Rgb& c) {
     return (c.r + c.g + c.b) * (1.0f / 3.0f);
 }
 
+/// The guiding a path's directions follow: `guiding` when render.volume.guiding is on; else a
+/// copy in `storage` without the field (which may exist for the "guided" window alone) and
+/// with the same records.
+const PathGuiding* direction_guiding(const PathGuiding* guiding, const VolumeSettings& settings,
+                                     PathGuiding& storage) {
+    if (guiding == nullptr || settings.guiding.enabled)
+        return guiding;
+    storage = *guiding;
+    storage.field = nullptr;
+    return &storage;
+}
+
 /// A scattering vertex whose continuation waits: a copy made by the weight window.
 struct PendingVertex {
     Vec3 position{0.0f};
@@ -104,15 +116,8 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             : nullptr;
     const bool window =
         (settings.splitting == PathSplitting::Sun && multiple && rendering) || learnt != nullptr;
-    // The field steers directions only when render.volume.guiding is on (it may exist for the
-    // window alone); the recorder keeps the caller's records either way.
     PathGuiding steer;
-    const PathGuiding* directions = guiding;
-    if (guiding != nullptr && !settings.guiding.enabled) {
-        steer = *guiding;
-        steer.field = nullptr;
-        directions = &steer;
-    }
+    const PathGuiding* directions = direction_guiding(guiding, settings, steer);
     // The copies the window made wait here; a nested call (the environment's own paths) works
     // above `base` and leaves the stack as it found it.
     thread_local std::vector<PendingVertex> pending;
@@ -212,12 +217,7 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         recorder.add(contribution);
     };
     PathGuiding steer;
-    const PathGuiding* directions = guiding;
-    if (guiding != nullptr && !settings.guiding.enabled) {
-        steer = *guiding;
-        steer.field = nullptr;
-        directions = &steer;
-    }
+    const PathGuiding* directions = direction_guiding(guiding, settings, steer);
     Ray ray = camera_segment;
     for (int depth = 0;;) {
         const bool last =
