@@ -15,13 +15,17 @@ namespace kasumi {
 /// most 2^20): their generators are independent of the render's.
 inline constexpr uint32_t kGuidingTrainingSampleBase = 1u << 24;
 
-/// True when render.volume.guiding is on and the plan runs multiple scattering.
+/// True when render.volume.guiding is on, or render.volume.splitting is "guided", and the plan
+/// runs multiple scattering in media.
 bool guiding_applies(const SceneRuntime& scene);
 
 /// render.volume.guiding's training_passes passes of training_spp samples per pixel (parallel
 /// over rows in the calling task arena; each row's records in pixel order, rows concatenated
 /// in image order, so the field is the same for any thread count). Their work is counted in
-/// `counters`. An empty field when guiding does not apply.
+/// `counters`. With render.volume.splitting "guided" the field also gets the in-scattered
+/// radiance tables (GuidingField::convolve, the first medium's phase function) and each pixel's
+/// mean volume luminance over the passes (PixelEstimates). The passes' directions are guided
+/// only when render.volume.guiding is on. An empty field when guiding does not apply.
 GuidingField train_guiding_field(const SceneRuntime& scene, uint32_t frame,
                                  RenderCounters& counters);
 

@@ -317,11 +317,18 @@ namespace {
 std::string path_roulette_summary(const VolumeSettings& volume) {
     if (volume.splitting == PathSplitting::Off)
         return ", Russian roulette from the third scattering";
+    const std::string name = volume.splitting == PathSplitting::Sun ? "sun" : "guided";
     if (volume.nee_points > 0)
-        return ", Russian roulette from the third scattering (splitting \"sun\": not with "
-               "nee_points)";
-    return ", Russian roulette and splitting by a weight window on throughput x the cached sun "
-           "transmittance (Vorba & Krivanek 2016; not in guiding's training passes)";
+        return ", Russian roulette from the third scattering (splitting \"" + name +
+               "\": not with nee_points)";
+    if (volume.splitting == PathSplitting::Sun)
+        return ", Russian roulette and splitting by a weight window on throughput x the cached "
+               "sun transmittance (Vorba & Krivanek 2016; not in guiding's training passes)";
+    return ", Russian roulette and splitting by a weight window on throughput x the radiance "
+           "learnt in " +
+           std::to_string(volume.guiding.training_passes) + " training passes of " +
+           std::to_string(volume.guiding.training_spp) +
+           " spp, centred on each pixel's training estimate (Vorba & Krivanek 2016)";
 }
 
 /// Russian roulette of the trackers' shadow rays by their cached contribution

@@ -168,8 +168,10 @@ RenderSettings parse_render(const JsonNode& node, const FilmDesc& film) {
                 *camera_t, {{"walk", CameraTransmittance::Walk},
                             {"first_flight", CameraTransmittance::FirstFlight}});
         if (auto splitting = volume.optional("splitting"))
-            render.volume.splitting = parse_choice<PathSplitting>(
-                *splitting, {{"off", PathSplitting::Off}, {"sun", PathSplitting::Sun}});
+            render.volume.splitting =
+                parse_choice<PathSplitting>(*splitting, {{"off", PathSplitting::Off},
+                                                         {"sun", PathSplitting::Sun},
+                                                         {"guided", PathSplitting::Guided}});
         if (auto sampling = volume.optional("light_sampling"))
             render.volume.light_sampling = parse_choice<LightSampling>(
                 *sampling, {{"all", LightSampling::All}, {"one", LightSampling::One}});

@@ -15,6 +15,9 @@ enum class CameraTransmittance {
 enum class PathSplitting {
     Off,  ///< Russian roulette on the throughput from the third scattering event
     Sun,  ///< a weight window on throughput x the cached sun transmittance (volume/weight_window.h)
+    /// a weight window on throughput x the radiance learnt by guiding's training passes,
+    /// centred on the pixel's training estimate (volume/weight_window.h)
+    Guided,
 };
 
 }  // namespace kasumi

@@ -7,6 +7,7 @@
 #include "volume/transmittance.h"
 #include "volume/weight_window.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace kasumi {
@@ -15,6 +16,9 @@ namespace {
 
 /// Paths play Russian roulette from this many scattering events on.
 constexpr int kRouletteDepth = 3;
+
+/// render.volume.splitting "guided": at most this many window copies wait per camera path.
+constexpr size_t kMaxWaitingCopies = 64;
 
 /// The next path vertex after a scattering event at `position`: a direction from the media's
 /// phase mixture, or, where `guiding` has a guide for the point (one medium there), from the
@@ -69,6 +73,18 @@ float mean(const Rgb& c) {
     return (c.r + c.g + c.b) * (1.0f / 3.0f);
 }
 
+/// The guiding a path's directions follow: `guiding` when render.volume.guiding is on; else a
+/// copy in `storage` without the field (which may exist for the "guided" window alone) and
+/// with the same records.
+const PathGuiding* direction_guiding(const PathGuiding* guiding, const VolumeSettings& settings,
+                                     PathGuiding& storage) {
+    if (guiding == nullptr || settings.guiding.enabled)
+        return guiding;
+    storage = *guiding;
+    storage.field = nullptr;
+    return &storage;
+}
+
 /// A scattering vertex whose continuation waits: a copy made by the weight window.
 struct PendingVertex {
     Vec3 position{0.0f};
@@ -92,14 +108,25 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
         recorder.add(contribution);
     };
     // Training paths stay single (one record chain per path): the window runs when rendering.
-    const bool window = settings.splitting == PathSplitting::Sun &&
-                        settings.integrator == VolumeIntegrator::Multiple &&
-                        (guiding == nullptr || guiding->records == nullptr);
+    const bool rendering = guiding == nullptr || guiding->records == nullptr;
+    const bool multiple = settings.integrator == VolumeIntegrator::Multiple;
+    const GuidingField* learnt =
+        settings.splitting == PathSplitting::Guided && multiple && rendering && guiding != nullptr
+            ? guiding->field
+            : nullptr;
+    const bool window =
+        (settings.splitting == PathSplitting::Sun && multiple && rendering) || learnt != nullptr;
+    PathGuiding steer;
+    const PathGuiding* directions = direction_guiding(guiding, settings, steer);
     // The copies the window made wait here; a nested call (the environment's own paths) works
     // above `base` and leaves the stack as it found it.
     thread_local std::vector<PendingVertex> pending;
     const size_t base = pending.size();
-    float window_centre = 0.0f;
+    // "guided": centred on the pixel's training estimate when the segment is a camera ray;
+    // otherwise (and for "sun") on the path's expected contribution at its first vertex.
+    float window_centre = learnt != nullptr ? learnt->pixel_estimates().at(camera_segment) : 0.0f;
+    if (!(window_centre > 0.0f) || !std::isfinite(window_centre))
+        window_centre = 0.0f;
     Ray ray = camera_segment;
     int depth = 0;
     // Continues the next waiting copy, if any, by its own direction; false: none is left.
@@ -109,7 +136,7 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             pending.pop_back();
             throughput = v.throughput;
             depth = v.depth;
-            if (scatter_onward(media, v.position, v.mask, v.k, v.wo, depth, environment, guiding,
+            if (scatter_onward(media, v.position, v.mask, v.k, v.wo, depth, environment, directions,
                                recorder, rng, throughput, ray, false))
                 return true;
         }
@@ -140,12 +167,22 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             break;
         }
         if (window) {
-            // Expected contribution beta I(x) against the centre set at the first vertex.
+            // Expected contribution beta I(x) against the window's centre.
             const float expected =
-                mean(throughput) * sun_importance(media, lights, flight.position);
-            if (depth == 1)
+                learnt != nullptr
+                    ? guided_expected(*learnt, flight.position, wo, mean(flight.k.sigma_s),
+                                      mean(throughput))
+                    : mean(throughput) * sun_importance(media, lights, flight.position);
+            if (!(window_centre > 0.0f) && expected > 0.0f && std::isfinite(expected))
                 window_centre = expected;
-            const SplitDecision split = split_decision(expected / window_centre, rng.next_float());
+            float q = learnt != nullptr ? window_ratio(expected, window_centre)
+                                        : expected / window_centre;
+            // "guided": no splits while kMaxWaitingCopies copies wait (q decided from the past
+            // alone, so still unbiased): a field that underestimates I somewhere can otherwise
+            // roulette paths to large weights that split again and again.
+            if (learnt != nullptr && pending.size() - base >= kMaxWaitingCopies)
+                q = std::min(q, 1.0f);
+            const SplitDecision split = split_decision(q, rng.next_float());
             throughput *= split.weight;
             for (int c = 1; c < split.copies; ++c)
                 pending.push_back(
@@ -157,7 +194,7 @@ Rgb path_radiance(const MediumSet& media, const std::vector<Light>& lights,
             }
         }
         if (!scatter_onward(media, flight.position, flight.media_mask, flight.k, wo, depth,
-                            environment, guiding, recorder, rng, throughput, ray, !window)) {
+                            environment, directions, recorder, rng, throughput, ray, !window)) {
             if (resume())
                 continue;
             break;
@@ -179,6 +216,8 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         radiance += contribution;
         recorder.add(contribution);
     };
+    PathGuiding steer;
+    const PathGuiding* directions = direction_guiding(guiding, settings, steer);
     Ray ray = camera_segment;
     for (int depth = 0;;) {
         const bool last =
@@ -249,7 +288,7 @@ Rgb tracked_path_radiance(const MediumSet& media, const std::vector<Light>& ligh
         }
         ++depth;
         throughput *= flight_weight;
-        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, guiding,
+        if (!scatter_onward(media, position, mask, k_here, wo, depth, environment, directions,
                             recorder, rng, throughput, ray))
             break;
     }

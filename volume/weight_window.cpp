@@ -24,6 +24,21 @@ float sun_importance(const MediumSet& media, const std::vector<Light>& lights,
     return importance > 0.0f ? importance : 1.0f;
 }
 
+float guided_expected(const GuidingField& field, const Vec3& p_world, const Vec3& wo, float sigma_s,
+                      float beta) {
+    const float scattered = field.scattered_radiance(p_world, wo);
+    if (!(scattered >= 0.0f))
+        return -1.0f;
+    return beta * sigma_s * scattered;
+}
+
+float window_ratio(float expected, float centre) {
+    if (!(expected >= 0.0f) || !(centre > 0.0f) || !std::isfinite(expected) ||
+        !std::isfinite(centre))
+        return 1.0f;
+    return std::max(expected / centre, kMinSurvival);
+}
+
 SplitDecision split_decision(float q, float u) {
     if (!(q > 0.0f) || !std::isfinite(q))
         return {0, 0.0f};

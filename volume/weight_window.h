@@ -9,6 +9,7 @@
 /// E[n / q'] = 1, so the estimate stays unbiased for any I > 0 and W > 0 (render.volume.splitting
 /// "sun"; docs/volumes.md, "Multiple scattering in clouds").
 #include "lights/light.h"
+#include "volume/guiding/guiding_field.h"
 #include "volume/medium_set.h"
 
 #include <vector>
@@ -24,6 +25,21 @@ namespace kasumi {
 /// core no beam reaches. 1 when no light has a cache (the window then acts on the throughput
 /// alone). lux; only ratios matter. Never throws.
 float sun_importance(const MediumSet& media, const std::vector<Light>& lights, const Vec3& p_world);
+
+/// render.volume.splitting "guided": the expected contribution of continuing a path of mean
+/// throughput `beta` (after the free flight, 1/(1/m)) from scattering vertex `p_world` (metres)
+/// whose arriving path points back along `wo`: beta sigma_s I(x, wo), I the field's learnt
+/// in-scattered radiance (GuidingField::scattered_radiance, cd/m²; biased, it only steers),
+/// sigma_s the mean scattering coefficient there (1/m). Negative where the field has no value
+/// (the window then keeps the path as it is).
+float guided_expected(const GuidingField& field, const Vec3& p_world, const Vec3& wo, float sigma_s,
+                      float beta);
+
+/// The window's ratio q for an expected contribution against the window's centre: 1 (keep)
+/// when either is negative or the centre is not positive (no centre yet); else expected /
+/// centre, raised to kMinSurvival when the estimate is 0 (a path the field calls dark may
+/// still carry light: it survives at the floor, so the estimate stays unbiased).
+float window_ratio(float expected, float centre);
 
 /// How a path continues: `copies` independent continuations (0: killed), each weighted by
 /// `weight` (1 / q', so E[copies x weight] = 1).

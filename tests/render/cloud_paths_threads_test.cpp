@@ -1,4 +1,4 @@
-// render.volume.splitting "sun", render.volume.camera_transmittance "first_flight" and
+// render.volume.splitting "sun" and "guided", render.volume.camera_transmittance "first_flight" and
 // render.volume.shadow_roulette (issue 19) in a render of data/scenes/cloud.json: the same image
 // for 1 and 2 threads (the weight window's copies draw from their own pixel sample's stream; the
 // light cache the roulette reads is built once, the same for any thread), and a different one
@@ -52,6 +52,23 @@ TEST(CloudPaths, ShadowRouletteRenderIsTheSameForOneAndTwoThreads) {
     expect_same_and_differs_from(render_cloud("off", "first_flight", 1, "0.05"),
                                  render_cloud("off", "first_flight", 2, "0.05"),
                                  render_cloud("off", "first_flight", 2, "0"));
+}
+
+TEST(CloudPaths, GuidedWindowRenderIsTheSameForOneAndTwoThreads) {
+    // render.volume.splitting "guided": the training passes' field and pixel estimates are the
+    // same for any thread count, and so is the window's render.
+    expect_same_and_differs_from(render_cloud("guided", "walk", 1),
+                                 render_cloud("guided", "walk", 2), render_cloud("off", "walk", 2));
+}
+
+TEST(CloudPaths, PlanNamesTheGuidedWindow) {
+    const SceneDesc desc = load_scene(KASUMI_SOURCE_DIR "/data/scenes/cloud.json",
+                                      {{"/render/volume/splitting", "\"guided\""}});
+    std::string reason;
+    for (const PlanStage& stage : make_plan(desc).stages)
+        if (stage.name == "multiple-scattering")
+            reason = stage.reason;
+    EXPECT_NE(reason.find("radiance learnt in 4 training passes"), std::string::npos) << reason;
 }
 
 TEST(CloudPaths, PlanNamesTheShadowRoulette) {

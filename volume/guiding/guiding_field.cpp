@@ -1,6 +1,9 @@
 #include "volume/guiding/guiding_field.h"
 
+#include "phase/phase_sample.h"
+
 #include <algorithm>
+#include <cmath>
 
 namespace kasumi {
 
@@ -33,8 +36,19 @@ void GuidingField::build(std::vector<GuidingRecord>& records, size_t begin, size
     if (end - begin <= static_cast<size_t>(leaf_records) || depth >= kMaxDepth ||
         !(extent[axis] > 0.0f)) {
         DirectionalHistogram histogram;
-        for (size_t i = begin; i < end; ++i)
+        BinTable radiance{};
+        for (size_t i = begin; i < end; ++i) {
             histogram.add(records[i].wi, records[i].weight);
+            if (records[i].weight > 0.0f && std::isfinite(records[i].weight))
+                radiance[static_cast<size_t>(DirectionalHistogram::bin_of(records[i].wi))] +=
+                    records[i].weight;
+        }
+        const float per_record =
+            1.0f / (static_cast<float>(end - begin) * DirectionalHistogram::kBinSolidAngle);
+        for (float& r : radiance)
+            r *= per_record;
+        m_nodes[node].leaf = static_cast<int>(m_radiance.size());
+        m_radiance.push_back(radiance);
         if (histogram.normalise(uniform)) {
             m_nodes[node].histogram = static_cast<int>(m_histograms.size());
             m_histograms.push_back(histogram);
@@ -61,17 +75,61 @@ void GuidingField::build(std::vector<GuidingRecord>& records, size_t begin, size
     build(records, mid, end, high, depth + 1, child + 1, leaf_records, uniform);
 }
 
-const DirectionalHistogram* GuidingField::find(const Vec3& p) const {
+int GuidingField::leaf_of(const Vec3& p) const {
     if (m_nodes.empty() || p.x < m_box.min.x || p.y < m_box.min.y || p.z < m_box.min.z ||
         p.x > m_box.max.x || p.y > m_box.max.y || p.z > m_box.max.z)
-        return nullptr;
+        return -1;
     int node = 0;
     while (m_nodes[static_cast<size_t>(node)].axis >= 0) {
         const Node& n = m_nodes[static_cast<size_t>(node)];
         node = n.child + (p[n.axis] < n.split ? 0 : 1);
     }
+    return node;
+}
+
+const DirectionalHistogram* GuidingField::find(const Vec3& p) const {
+    const int node = leaf_of(p);
+    if (node < 0)
+        return nullptr;
     const int h = m_nodes[static_cast<size_t>(node)].histogram;
     return h >= 0 ? &m_histograms[static_cast<size_t>(h)] : nullptr;
+}
+
+void GuidingField::convolve(const PhaseFunction& phase) {
+    constexpr int kBins = DirectionalHistogram::kBins;
+    // The phase function between every pair of bin centres, each row normalised to sum 1.
+    std::vector<float> weights(static_cast<size_t>(kBins * kBins));
+    for (int b = 0; b < kBins; ++b) {
+        const Vec3 wo = DirectionalHistogram::in_bin(b, Vec2(0.5f));
+        float sum = 0.0f;
+        for (int j = 0; j < kBins; ++j) {
+            const float p =
+                eval(phase, scattering_cosine(wo, DirectionalHistogram::in_bin(j, Vec2(0.5f))));
+            weights[static_cast<size_t>(b * kBins + j)] = p;
+            sum += p;
+        }
+        for (int j = 0; j < kBins; ++j)
+            weights[static_cast<size_t>(b * kBins + j)] /= sum;
+    }
+    m_scattered.assign(m_radiance.size(), BinTable{});
+    for (size_t leaf = 0; leaf < m_radiance.size(); ++leaf) {
+        for (int b = 0; b < kBins; ++b) {
+            float sum = 0.0f;
+            for (int j = 0; j < kBins; ++j)
+                sum += weights[static_cast<size_t>(b * kBins + j)] *
+                       m_radiance[leaf][static_cast<size_t>(j)];
+            m_scattered[leaf][static_cast<size_t>(b)] = sum;
+        }
+    }
+}
+
+float GuidingField::scattered_radiance(const Vec3& p, const Vec3& wo) const {
+    const int node = leaf_of(p);
+    if (node < 0 || m_scattered.empty())
+        return -1.0f;
+    const int leaf = m_nodes[static_cast<size_t>(node)].leaf;
+    return m_scattered[static_cast<size_t>(leaf)]
+                      [static_cast<size_t>(DirectionalHistogram::bin_of(wo))];
 }
 
 }  // namespace kasumi

@@ -7,8 +7,11 @@
 /// zero-variance random walk theory": sample scattering directions in proportion to L_i).
 /// Built from records alone, in their order: the same records give the same field.
 #include "core/bounds.h"
+#include "phase/phase_function.h"
 #include "volume/guiding/directional_histogram.h"
+#include "volume/guiding/pixel_estimates.h"
 
+#include <utility>
 #include <vector>
 
 namespace kasumi {
@@ -37,13 +40,34 @@ class GuidingField {
     bool empty() const { return m_nodes.empty(); }
     size_t leaf_count() const { return m_histograms.size(); }
 
+    /// Fills every leaf's table of scattered radiance for `phase` (scattered_radiance): for
+    /// each outgoing bin b, I_b = sum_j L_j p(mu_bj) / sum_j p(mu_bj), L_j the leaf's mean
+    /// incident radiance over bin j and mu_bj the scattering cosine between the bins' centres
+    /// (the phase function's quadrature over the bins, normalised so a uniform L gives L).
+    void convolve(const PhaseFunction& phase);
+    /// The learnt in-scattered radiance at world point p toward the path arriving along -wo
+    /// (wo unit, pointing back along the arriving path): I(x, wo) = integral of L_i(x, wi)
+    /// p(wo, wi) dwi, luminance, cd/m², from the leaf's table (convolve); the incident radiance
+    /// is the records' (light gathered after the vertex: the vertex's own next-event estimate is
+    /// not in it). Negative when p is outside the field's box or convolve() was not called.
+    /// Biased (coarse bins, few records): it only steers (render.volume.splitting "guided").
+    float scattered_radiance(const Vec3& p, const Vec3& wo) const;
+
+    /// The per-pixel estimates of the training passes (render.volume.splitting "guided").
+    void set_pixel_estimates(PixelEstimates pixels) { m_pixels = std::move(pixels); }
+    const PixelEstimates& pixel_estimates() const { return m_pixels; }
+
   private:
     struct Node {
         int axis = -1;       ///< -1: a leaf
         float split = 0.0f;  ///< world coordinate of the split plane on `axis`
         int child = -1;      ///< first child (the second is child + 1)
         int histogram = -1;  ///< a leaf's histogram, -1 if it guides nothing
+        int leaf = -1;       ///< a leaf's index into m_radiance and m_scattered
     };
+    using BinTable = std::array<float, DirectionalHistogram::kBins>;
+    /// The leaf holding p, or -1 outside the box.
+    int leaf_of(const Vec3& p) const;
     /// Makes m_nodes[node] the root of a subtree over records [begin, end) inside `box`.
     void build(std::vector<GuidingRecord>& records, size_t begin, size_t end, const Bounds3& box,
                int depth, size_t node, int leaf_records, float uniform);
@@ -51,6 +75,11 @@ class GuidingField {
     Bounds3 m_box;
     std::vector<Node> m_nodes;
     std::vector<DirectionalHistogram> m_histograms;
+    /// Per leaf: the mean incident luminance over each bin, cd/m² (sum of the bin's record
+    /// weights / (records in the leaf x bin solid angle): the records' weights are L_i / pdf).
+    std::vector<BinTable> m_radiance;
+    std::vector<BinTable> m_scattered;  ///< per leaf: I_b of convolve(), empty before it
+    PixelEstimates m_pixels;
 };
 
 }  // namespace kasumi
