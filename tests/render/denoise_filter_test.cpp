@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 
 namespace kasumi {
 namespace {
@@ -112,6 +113,31 @@ TEST(NlmFilter, EdgeBiasBoundedAndShrinksWithSamples) {
     // The bias is measurable at 16 spp and at most about half of it remains at 64 spp.
     EXPECT_GT(b16.mean, 4.0 * b16.stderr_);
     EXPECT_LT(b64.mean, 0.6 * b16.mean + 4.0 * b64.stderr_) << b16.mean << " -> " << b64.mean;
+}
+
+// A pixel holding a non-finite value (the renderer drops such samples; the filter must not rely
+// on it) is neither filtered nor borrowed from: every other output pixel stays finite, and the
+// pixel keeps its own raw value.
+TEST(NlmFilter, NonFiniteInputsNeverSpread) {
+    const auto draw = [](int, Pcg32& rng) { return exponential(rng); };
+    HalfBuffers halves = synthetic(1, 16, draw);
+    HalfSums bad;
+    for (int s = 0; s < 16; ++s) {
+        PixelSample sample;
+        sample.radiance = Rgb(s == 5 ? std::numeric_limits<float>::infinity() : 1.0f);
+        bad.add(s, sample);
+    }
+    halves.set_pixel(kCentre, kCentre, bad, 16);
+    const DenoisedBeauty out = denoise_beauty(halves, DenoiseSettings{});
+    const size_t centre = static_cast<size_t>(kCentre) * kSize + kCentre;
+    for (int c = 0; c < 3; ++c) {
+        for (size_t i = 0; i < out.rgb[c].size(); ++i) {
+            if (i != centre) {
+                EXPECT_TRUE(std::isfinite(out.rgb[c][i])) << "pixel " << i << " channel " << c;
+            }
+        }
+    }
+    EXPECT_FALSE(std::isfinite(out.rgb[0][centre]));  // its own (raw) value, not spread
 }
 
 }  // namespace
