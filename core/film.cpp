@@ -31,7 +31,7 @@ bool parse_film_aovs(const std::string& text, uint32_t& aovs) {
     while (std::getline(in, name, ',')) {
         any = true;
         if (name == "all")
-            aovs |= kAovAll | kAovSamples;
+            aovs |= kAovAll | kAovSamples | kAovNoisy;
         else if (name == "none")
             continue;
         else if (name == "albedo")
@@ -46,6 +46,8 @@ bool parse_film_aovs(const std::string& text, uint32_t& aovs) {
             aovs |= kAovTransmittance;
         else if (name == "samples")
             aovs |= kAovSamples;
+        else if (name == "noisy")
+            aovs |= kAovNoisy;
         else
             return false;
     }
@@ -66,13 +68,14 @@ struct AovLayout {
     const char* prefix;
     const char* single;
 };
-constexpr int kAovKinds = 6;
+constexpr int kAovKinds = 7;
 constexpr AovLayout kAovLayout[kAovKinds] = {{kAovAlbedo, 3, "albedo.", ""},
                                              {kAovDepth, 1, "depth.", "Z"},
                                              {kAovSurface, 3, "surface.", ""},
                                              {kAovVolume, 3, "volume.", ""},
                                              {kAovTransmittance, 3, "transmittance.", ""},
-                                             {kAovSamples, 1, "samples.", "count"}};
+                                             {kAovSamples, 1, "samples.", "count"},
+                                             {kAovNoisy, 3, "noisy.", ""}};
 
 int channel_count(uint32_t aovs) {
     int n = 4;
@@ -86,7 +89,7 @@ int channel_count(uint32_t aovs) {
 Film::Film(int width, int height, uint32_t aovs)
     : m_width(width),
       m_height(height),
-      m_aovs(aovs & (kAovAll | kAovSamples)),
+      m_aovs(aovs & (kAovAll | kAovSamples | kAovNoisy)),
       m_pixels(static_cast<size_t>(width) * static_cast<size_t>(height)) {
     int next = 4;
     for (int k = 0; k < kAovKinds; ++k) {
@@ -154,6 +157,14 @@ void Film::set_pixel(int x, int y, const PixelSample& sum, int n, int hits, floa
         put3(m_first[4], sum.transmittance);
     if (m_first[5] >= 0)
         plane(m_first[5])[i] = static_cast<float>(n);
+}
+
+void Film::replace_beauty(const float* const rgb[3]) {
+    for (int c = 0; c < 3; ++c) {
+        if (m_first[6] >= 0)
+            std::copy(plane(c), plane(c) + m_pixels, plane(m_first[6] + c));
+        std::copy(rgb[c], rgb[c] + m_pixels, plane(c));
+    }
 }
 
 Image Film::to_image() const {

@@ -41,10 +41,14 @@ enum FilmAov : uint32_t {
     /// film.spp; render/adaptive_sampling.h). Not in kAovAll: a uniform render's count is
     /// film.spp everywhere, in the metadata.
     kAovSamples = 1u << 5,
+    /// noisy.R/G/B: the beauty before film.denoise (render/denoise/), stored only when the
+    /// beauty is denoised. Not in kAovAll ("all" on the command line adds it).
+    kAovNoisy = 1u << 6,
 };
 
 /// Parses a comma-separated list of AOV names ("albedo", "depth", "surface", "volume",
-/// "transmittance", "samples"), or "all" (every one) or "none"; returns false on an unknown name.
+/// "transmittance", "samples", "noisy"), or "all" (every one) or "none"; returns false on an
+/// unknown name.
 bool parse_film_aovs(const std::string& text, uint32_t& aovs);
 
 class Film {
@@ -71,8 +75,9 @@ class Film {
     void set_pixel(int x, int y, const PixelSample& sum, int n, int hits, float depth_sum);
 
     /// The image with channels R,G,B,A, then the stored AOVs among albedo.*, depth.Z, surface.*,
-    /// volume.*, transmittance.*, samples.count, in that order. Alpha is the fraction of samples
-    /// that hit a surface, plus the opacity 1 - T of the media for the rest (luminance-weighted).
+    /// volume.*, transmittance.*, samples.count, noisy.*, in that order. Alpha is the fraction of
+    /// samples that hit a surface, plus the opacity 1 - T of the media for the rest
+    /// (luminance-weighted).
     Image to_image() const;
 
     /// The same into `image`, reusing its channel buffers when it already has this film's size
@@ -86,6 +91,11 @@ class Film {
     /// The planes to_image(image, aovs) would copy, in its channel order, without copying
     /// (valid while the film lives): what the EXR writer reads directly.
     std::vector<FilmPlane> planes(uint32_t aovs) const;
+
+    /// Replaces the beauty R, G, B (cd/m², each `width * height` floats, top row first) with
+    /// `rgb`, first copying the old beauty into noisy.R/G/B if that AOV is stored. Alpha and the
+    /// other AOVs are unchanged (what film.denoise does).
+    void replace_beauty(const float* const rgb[3]);
 
   private:
     /// Plane storage: a new film's planes are fresh zeroed pages (calloc), not a fill pass.
@@ -102,8 +112,8 @@ class Film {
     uint32_t m_aovs;
     size_t m_pixels;
     /// First plane of each AOV (index by bit position: albedo, depth, surface, volume,
-    /// transmittance, samples), -1 if not stored.
-    int m_first[6];
+    /// transmittance, samples, noisy), -1 if not stored.
+    int m_first[7];
     Storage m_planes;  ///< channel-major: plane c holds pixel i at c * m_pixels + i
 };
 

@@ -14,7 +14,7 @@ void parse_output_format(const std::string& aovs_text, const std::string& compre
     if (!parse_film_aovs(aovs_text, aovs))
         throw Error(ErrorKind::Usage,
                     "--aovs expects all, none or a comma-separated list of albedo, depth, "
-                    "surface, volume, transmittance, samples; got \"" +
+                    "surface, volume, transmittance, samples, noisy; got \"" +
                         aovs_text + "\"");
     if (!parse_exr_compression(compression_text, compression))
         throw Error(ErrorKind::Usage, "--compression expects zip, piz, rle or none; got \"" +
@@ -89,6 +89,14 @@ std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRunti
     if (desc.film.noise_threshold > 0.0f) {
         metadata.emplace_back("noise_threshold", std::to_string(desc.film.noise_threshold));
         metadata.emplace_back("min_spp", std::to_string(desc.film.min_spp));
+    }
+    const DenoiseSettings& denoise = desc.film.denoise;
+    if (denoise.enabled && !result.interrupted) {
+        // R, G, B are filtered (render/denoise/nlm_filter.h); noisy.R/G/B hold the raw means.
+        metadata.emplace_back("denoise", "nlm radius " + std::to_string(denoise.radius) +
+                                             " patch " + std::to_string(denoise.patch) + " k " +
+                                             std::to_string(denoise.k) + " k_feature " +
+                                             std::to_string(denoise.k_feature));
     }
     for (auto& kv : stage_metadata(times, scene.plan()))
         metadata.push_back(std::move(kv));

@@ -22,8 +22,9 @@ inline constexpr const char* kKasumiVersion = "kasumi 0.1.0";
 /// Where a frame's files go and how the EXR is stored.
 struct OutputPaths {
     std::string exr;
-    std::string preview;                    ///< empty: no preview
-    uint32_t aovs = kAovAll | kAovSamples;  ///< FilmAov bits written beside R, G, B, A (if stored)
+    std::string preview;  ///< empty: no preview
+    /// FilmAov bits written beside R, G, B, A (if stored)
+    uint32_t aovs = kAovAll | kAovSamples | kAovNoisy;
     ExrCompression compression = ExrCompression::Zip;  ///< lossless, see core/exr_io.h
 };
 

@@ -3,6 +3,8 @@
 #include "core/progress.h"
 #include "render/adaptive_sampling.h"
 #include "render/camera_sample.h"
+#include "render/denoise/half_buffers.h"
+#include "render/denoise/nlm_filter.h"
 #include "render/guiding_training.h"
 #include "render/integrator.h"
 
@@ -32,7 +34,12 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
     const int width = desc.film.width, height = desc.film.height;
     const AdaptiveCriterion criterion = adaptive_criterion(desc.film);
     // A uniform render's sample count is film.spp everywhere: no plane for it.
-    const uint32_t aovs = criterion.threshold > 0.0 ? options.aovs : options.aovs & ~kAovSamples;
+    uint32_t aovs = criterion.threshold > 0.0 ? options.aovs : options.aovs & ~kAovSamples;
+    // film.denoise: the raw beauty is kept as noisy.R/G/B (if asked for); the half buffers
+    // (render/denoise/half_buffers.h) feed the filter after the last tile.
+    const bool denoise = desc.film.denoise.enabled;
+    aovs = denoise ? aovs : aovs & ~kAovNoisy;
+    HalfBuffers halves = denoise ? HalfBuffers(width, height) : HalfBuffers();
     const int tile = desc.render.tile_size;
     const int tiles_x = (width + tile - 1) / tile, tiles_y = (height + tile - 1) / tile;
     const int threads = options.threads > 0 ? options.threads : desc.render.threads;
@@ -77,6 +84,7 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
         std::vector<int> hits(row);
         std::vector<float> depth_sums(row);
         std::vector<PixelConvergence> convergence(row);
+        std::vector<HalfSums> half_sums(denoise ? row : 0);
         std::vector<size_t> active;  // the row's pixels still sampling, left to right
         active.reserve(row);
         std::vector<CameraSample> samples;
@@ -91,6 +99,8 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                 hits[i] = 0;
                 depth_sums[i] = 0.0f;
                 convergence[i] = PixelConvergence{};
+                if (denoise)
+                    half_sums[i] = HalfSums{};
                 active.push_back(i);
             }
             bool complete = true;
@@ -134,6 +144,8 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                         ++hits[i];
                         depth_sums[i] += p.depth;
                     }
+                    if (denoise)
+                        half_sums[i].add(s, p);
                 }
                 // Each pixel decides from its own samples alone (render/adaptive_sampling.h).
                 active.erase(std::remove_if(active.begin(), active.end(),
@@ -144,9 +156,12 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
             }
             if (!complete)
                 break;
-            for (size_t i = 0; i < row; ++i)
+            for (size_t i = 0; i < row; ++i) {
                 result.film.set_pixel(x0 + static_cast<int>(i), y, sums[i], convergence[i].n,
                                       hits[i], depth_sums[i]);
+                if (denoise)
+                    halves.set_pixel(x0 + static_cast<int>(i), y, half_sums[i], convergence[i].n);
+            }
         }
         {
             std::lock_guard<std::mutex> lock(counters_mutex);
@@ -169,6 +184,14 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                               for (int i = r.begin(); i < r.end(); ++i)
                                   render_tile(i);
                           });
+        // The filter's time is the render's (a study compares denoised and raw renders at
+        // their full cost). An interrupted render is left raw.
+        if (denoise && !stopped) {
+            const DenoisedBeauty beauty = denoise_beauty(halves, desc.film.denoise);
+            const float* rgb[3] = {beauty.rgb[0].data(), beauty.rgb[1].data(),
+                                   beauty.rgb[2].data()};
+            result.film.replace_beauty(rgb);
+        }
     });
     progress.finish();
     result.seconds =

@@ -248,6 +248,25 @@ PlanStage adaptive_sampling_plan_stage(const FilmDesc& film) {
     return {"adaptive-sampling", true, reason.str()};
 }
 
+/// The denoise stage (film.denoise, render/denoise/nlm_filter.h): on when asked for and every
+/// pixel has at least 2 samples in each half buffer.
+PlanStage denoise_plan_stage(const FilmDesc& film) {
+    const DenoiseSettings& d = film.denoise;
+    if (!d.enabled)
+        return {"denoise", false, "film.denoise is \"off\": the beauty is the raw sample mean"};
+    const int fewest = film.noise_threshold > 0.0f ? std::min(film.min_spp, film.spp) : film.spp;
+    std::ostringstream reason;
+    reason << "non-local means cross-filtered between even and odd samples (Rousselle et al. "
+              "2012), window "
+           << 2 * d.radius + 1 << "x" << 2 * d.radius + 1 << ", patch " << 2 * d.patch + 1 << "x"
+           << 2 * d.patch + 1 << ", k " << d.k << ", transmittance feature k " << d.k_feature
+           << "; bias <~ 0.86 k standard errors of a half's mean; raw beauty in noisy.R/G/B";
+    if (fewest < 4)
+        reason << "; pixels of fewer than 4 samples (here " << fewest
+               << ") have no variance estimate in a half and stay raw";
+    return {"denoise", true, reason.str()};
+}
+
 }  // namespace
 
 namespace {
@@ -478,6 +497,7 @@ Plan make_plan(const SceneDesc& scene) {
     }
     plan.stages.push_back(quality_plan_stage(scene));
     plan.stages.push_back(adaptive_sampling_plan_stage(scene.film));
+    plan.stages.push_back(denoise_plan_stage(scene.film));
     return plan;
 }
 

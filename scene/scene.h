@@ -19,6 +19,15 @@
 
 namespace kasumi {
 
+/// film.denoise: the consistent non-local-means filter of the beauty (render/denoise/nlm_filter.h).
+struct DenoiseSettings {
+    bool enabled = false;    ///< "off" (false) or "nlm"
+    int radius = 5;          ///< search window half-width, pixels, [1, 32]
+    int patch = 3;           ///< patch half-width, pixels, [0, 8]
+    float k = 0.7f;          ///< colour strength: weights fall past ~k standard errors, (0, 4)
+    float k_feature = 0.6f;  ///< transmittance feature strength, (0, 16)
+};
+
 struct FilmDesc {
     int width = 640;   ///< pixels, 1..16384
     int height = 360;  ///< pixels, 1..16384
@@ -33,6 +42,7 @@ struct FilmDesc {
     bool jitter = true;  ///< false: every sample through the pixel centre (peer comparisons)
     /// EXR pixel type of R, G, B, A (AOVs stay float); half saturates beyond 65504 (exr_io.h)
     ExrPixelType pixel_type = ExrPixelType::Float;
+    DenoiseSettings denoise;  ///< film.denoise (default off)
 };
 
 struct PreviewDesc {

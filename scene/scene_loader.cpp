@@ -48,6 +48,37 @@ CameraDesc parse_camera(const JsonNode& node) {
     return camera;
 }
 
+/// film.denoise: "off", "nlm", or an object {"method", "radius", "patch", "k", "k_feature"}.
+DenoiseSettings parse_denoise(const JsonNode& node) {
+    DenoiseSettings denoise;
+    const auto method = [&](const JsonNode& v) {
+        const std::string name = v.is_string() ? v.as_string() : std::string();
+        if (name != "off" && name != "nlm")
+            v.fail(
+                "must be \"off\", \"nlm\" or an object {\"method\", \"radius\", \"patch\", "
+                "\"k\", \"k_feature\"}");
+        return name == "nlm";
+    };
+    if (!node.is_object()) {
+        denoise.enabled = method(node);
+        return denoise;
+    }
+    JsonObjectReader reader(node);
+    denoise.enabled = true;
+    if (auto v = reader.optional("method"))
+        denoise.enabled = method(*v);
+    if (auto v = reader.optional("radius"))
+        denoise.radius = parse_int_in(*v, 1, 32);
+    if (auto v = reader.optional("patch"))
+        denoise.patch = parse_int_in(*v, 0, 8);
+    if (auto v = reader.optional("k"))
+        denoise.k = v->in_open(0.0f, 4.0f);
+    if (auto v = reader.optional("k_feature"))
+        denoise.k_feature = v->in_open(0.0f, 16.0f);
+    reader.finish();
+    return denoise;
+}
+
 FilmDesc parse_film(const JsonNode& node) {
     JsonObjectReader reader(node);
     FilmDesc film;
@@ -69,6 +100,8 @@ FilmDesc parse_film(const JsonNode& node) {
         if (!parse_exr_pixel_type(v->as_string(), film.pixel_type))
             v->fail("must be \"float\" or \"half\"");
     }
+    if (auto v = reader.optional("denoise"))
+        film.denoise = parse_denoise(*v);
     reader.finish();
     return film;
 }

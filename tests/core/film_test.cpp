@@ -153,7 +153,9 @@ TEST(Film, RecycledStorageOfAnAovSubsetStartsEmpty) {
 TEST(Film, ParsesAovLists) {
     uint32_t aovs = 0;
     EXPECT_TRUE(parse_film_aovs("all", aovs));
-    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovAll | kAovSamples));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovAll | kAovSamples | kAovNoisy));
+    EXPECT_TRUE(parse_film_aovs("noisy", aovs));
+    EXPECT_EQ(aovs, static_cast<uint32_t>(kAovNoisy));
     EXPECT_TRUE(parse_film_aovs("samples", aovs));
     EXPECT_EQ(aovs, static_cast<uint32_t>(kAovSamples));
     EXPECT_TRUE(parse_film_aovs("none", aovs));
