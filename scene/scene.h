@@ -22,9 +22,9 @@ namespace kasumi {
 /// film.denoise: the consistent non-local-means filter of the beauty (render/denoise/nlm_filter.h).
 struct DenoiseSettings {
     bool enabled = false;    ///< "off" (false) or "nlm"
-    int radius = 5;          ///< search window half-width, pixels, [1, 32]
+    int radius = 3;          ///< search window half-width, pixels, [1, 32]
     int patch = 3;           ///< patch half-width, pixels, [0, 8]
-    float k = 0.7f;          ///< colour strength: weights fall past ~k standard errors, (0, 4)
+    float k = 0.85f;         ///< colour strength: weights fall past ~k standard errors, (0, 4)
     float k_feature = 0.6f;  ///< transmittance feature strength, (0, 16)
 };
 

@@ -13,8 +13,8 @@
 /// averaged over the channels and over the (2 patch + 1)² patch around p (pairs inside the
 /// image), then w_colour = exp(-max(0, d²)). The transmittance feature f (luminance of T, with
 /// its variance W) gives w_feature = exp(-max(0, [(f_p - f_q)² - (W_p + min(W_p, W_q))] /
-/// (k_f² max(tau, W_p + W_q)))); w = min(w_colour, w_feature), w(p, p) = 1. Defaults (radius 5,
-/// patch 3, k 0.7, k_f 0.6) were chosen by a study on cloud.json (docs/denoising.md).
+/// (k_f² max(tau, W_p + W_q)))); w = min(w_colour, w_feature), w(p, p) = 1. Defaults (radius 3,
+/// patch 3, k 0.85, k_f 0.6) were chosen by a study on cloud.json (docs/denoising.md).
 ///
 /// Bias bound (why it is consistent). The weights of A's filter are functions of B alone, and
 /// B is independent of A (disjoint samples), so E[A'_p] = sum_q omega_q mu_q with

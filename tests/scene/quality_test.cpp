@@ -221,15 +221,20 @@ std::vector<Medium> thick_cloud() {
     return {Medium{"cloud", v}};
 }
 
+/// A scene document with one VDB medium and `render` as its render object.
+SceneDocument vdb_document(const std::string& render) {
+    const std::string text =
+        R"({"media": [{"type": "vdb", "file": "x.vdb"}], "render": )" + render + "}";
+    return SceneDocument(parse_json_text(text, "t.json"), "t.json");
+}
+
 TEST(ScatteringBound, SingleScatteredCloudsTakeTheLevelsSingleScatteringEstimator) {
     // A thick cloud: draft chooses single scattering and, with the estimator left to the level,
     // the level's grid_single_estimator; default chooses multiple and keeps grid_estimator; an
     // estimator the scene gives is kept.
     const std::vector<Medium> cloud = thick_cloud();
     auto choose = [&](const std::string& render) {
-        const std::string text =
-            R"({"media": [{"type": "vdb", "file": "x.vdb"}], "render": )" + render + "}";
-        SceneDocument doc(parse_json_text(text, "t.json"), "t.json");
+        SceneDocument doc = vdb_document(render);
         QualityChoice c = apply_quality(doc);
         VolumeSettings volume;
         volume.estimator =
@@ -262,9 +267,7 @@ TEST(ScatteringBound, MultiplyScatteredCloudsTakeTheLevelsShadowRouletteAndCamer
         SceneDocument doc;
     };
     auto choose = [&](const std::string& render) {
-        const std::string text =
-            R"({"media": [{"type": "vdb", "file": "x.vdb"}], "render": )" + render + "}";
-        SceneDocument doc(parse_json_text(text, "t.json"), "t.json");
+        SceneDocument doc = vdb_document(render);
         QualityChoice c = apply_quality(doc);
         VolumeSettings volume;
         if (doc.contains("/render/volume/integrator"))
