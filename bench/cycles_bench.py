@@ -97,6 +97,12 @@ KASUMI_CONFIGS = {
         # cloud is lit from behind the camera, so most events backscatter (HG 0.8) and skip
         # their shadow walk.
         ("residual-ratio + NEE roulette", {"estimator": "residual-ratio", "nee_roulette": True}),
+        # What render.quality's levels choose for clouds (scene/quality.cpp; unbiased): the
+        # shadow rays' roulette on the light cache's contribution and the camera segment's T
+        # from the first free flight.
+        ("residual-ratio + shadow roulette + first flight",
+         {"estimator": "residual-ratio", "shadow_roulette": 0.05,
+          "camera_transmittance": "first_flight"}),
     ],
 }
 
