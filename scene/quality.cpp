@@ -101,13 +101,13 @@ namespace {
 //   at load 15-19): no win at equal error on all three clouds.
 constexpr QualityPreset kTable[] = {
     {QualityLevel::Draft, 4, 1.6, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008, 4.0, "march",
-     0.000244, "unbiased-march", 0.05f, "first_flight"},
+     0.000244, "unbiased-march", 0.05f, CameraTransmittance::FirstFlight},
     {QualityLevel::Default, 16, 1.6, "ratio", 4, 0.1, 0.00134, 0.0416, 0.0073, 4.0, "march", 0.088,
-     "unbiased-march", 0.05f, "first_flight"},
+     "unbiased-march", 0.05f, CameraTransmittance::FirstFlight},
     {QualityLevel::Final, 64, 1.6, "ratio", 4, 0.02, 0.000335, 0.0111, 0.0073, 4.0, "march", 0.022,
-     "unbiased-march", 0.05f, "first_flight"},
+     "unbiased-march", 0.05f, CameraTransmittance::FirstFlight},
     {QualityLevel::Reference, 256, 0.2, "ratio", 16, 0.0, 8.9e-5, 0.0028, 0.00023, 1.0, "march",
-     0.0054, "unbiased-march", 0.0f, "walk"},
+     0.0054, "unbiased-march", 0.0f, CameraTransmittance::Walk},
 };
 
 bool is_extended_light(const Json& light) {
@@ -322,7 +322,7 @@ void choose_multiple_scattering_sampling(const SceneDocument& doc, const Quality
     const char* camera_t = "/render/volume/camera_transmittance";
     if (doc.contains(camera_t)) {
         choice.kept.push_back(camera_t);
-    } else if (std::string(preset.grid_camera_transmittance) == "first_flight") {
+    } else if (preset.grid_camera_transmittance == CameraTransmittance::FirstFlight) {
         volume.camera_transmittance = CameraTransmittance::FirstFlight;
         choice.applied.push_back(std::string(camera_t) +
                                  " = \"first_flight\" (multiple scattering)");

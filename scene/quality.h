@@ -44,7 +44,7 @@ struct QualityPreset {
     /// (0: off) and render.volume.camera_transmittance, from the cloud studies of the three
     /// clouds (quality.cpp).
     float grid_shadow_roulette;
-    const char* grid_camera_transmittance;
+    CameraTransmittance grid_camera_transmittance;
 };
 
 const QualityPreset& quality_preset(QualityLevel level);
