@@ -74,14 +74,14 @@ namespace {
 //   0.1 where its own 64 spp is used, with the neighbourhood pilot rule (film.noise_window 2,
 //   the default), which has no early-stop bias (render/adaptive_sampling.h). Study
 //   (docs/studies/cloud-ms-adaptive*, 2026-12-05): 64 spp, 96x54, seeds 1-4, the levels'
-//   cloud sampling (ratio, shadow roulette 0.05, first flight; WDAS: its own scene settings),
+//   cloud sampling (ratio, shadow roulette 0.05, first flight),
 //   references at 2048 spp (cumulus 1024) of another seed; cost in instructions of the whole
 //   process (callgrind, seed 1, one thread). Efficiency 1/(rel. MSE x instructions) against
 //   uniform 64 spp: cloud.json 1.24x (rel. MSE 0.0112 -> 0.0122, 1704 -> 1263 M), 256³ cumulus
-//   1.27x (0.0143 -> 0.0149, 1709 -> 1290 M), WDAS 1.15x (0.0125 -> 0.0131, 3254 -> 2689 M);
-//   the mean luminance of each seed within 0.03% of the uniform render of the same seed. The
-//   pixel's own rule (window 0) looked more efficient (1.28-1.38x) but moved the mean
-//   luminance by -0.4% (cloud.json) and -1.9% (WDAS): biased, not used. The expected cloud
+//   1.27x (0.0143 -> 0.0149, 1709 -> 1290 M), WDAS 1.18x (0.0119 -> 0.0122, 2146 -> 1775 M);
+//   the mean luminance of each seed within 0.04% of the uniform render of the same seed. The
+//   pixel's own rule (window 0) looked more efficient (1.28-1.41x) but moved the mean
+//   luminance by -0.4% (cloud.json) and -2.2% (WDAS): biased, not used. The expected cloud
 //   error of final is the study's 0.0122 (cloud.json, 64 spp, threshold 0.1). Draft (4 spp)
 //   and default (16) leave it off: their spp is at most film.min_spp (16), where no pixel can
 //   stop early. A scene that gives film.spp keeps uniform sampling (the threshold was measured
