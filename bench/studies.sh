@@ -171,9 +171,7 @@ adaptive=(--spp 64 --vary /film/noise_threshold=0,0.1,0.2 --vary /film/noise_win
   --set '/render/volume/camera_transmittance="first_flight"' --set '/render/volume/estimator="ratio"'
   --reference-set /film/noise_threshold=0 --reference-set /render/seed=999 --repeats 1)
 study cloud-ms-adaptive data/scenes/cloud.json --res 96x54 --reference-spp 2048 "${adaptive[@]}"
-if [ "${#selected[@]}" -eq 0 ] || [[ " ${selected[*]} " =~ " cloud-ms-adaptive-cumulus " ]]; then
-  "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
-fi
+[ -f "$cumulus_256" ] || "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
 study cloud-ms-adaptive-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
   --set "/media/0/file=\"$cumulus_256\"" "${adaptive[@]}"
 if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then

@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
+#include <string>
 
 namespace kasumi {
 namespace {
@@ -243,29 +245,25 @@ TEST(AdaptiveSampling, PlanSaysItRanWithItsThreshold) {
     EXPECT_FALSE(stage(R"({"film": {"spp": 64}})").enabled);
 }
 
-TEST(AdaptiveSampling, BadThresholdIsAnInputErrorWithItsPointer) {
-    for (const char* bad : {"-0.1", "\"fine\"", "null", "true"}) {
+/// Each of `bad` as film.<setting> is an input error naming /film/<setting>.
+void expect_input_errors(const std::string& setting, std::initializer_list<const char*> bad) {
+    for (const char* value : bad) {
         try {
-            scene_from_text(std::string(R"({"film": {"noise_threshold": )") + bad + "}}");
-            ADD_FAILURE() << bad << " accepted";
+            scene_from_text(R"({"film": {")" + setting + "\": " + value + "}}");
+            ADD_FAILURE() << setting << " = " << value << " accepted";
         } catch (const Error& e) {
-            EXPECT_EQ(e.kind(), ErrorKind::Input) << bad;
-            EXPECT_NE(std::string(e.what()).find("/film/noise_threshold"), std::string::npos)
+            EXPECT_EQ(e.kind(), ErrorKind::Input) << value;
+            EXPECT_NE(std::string(e.what()).find("/film/" + setting), std::string::npos)
                 << e.what();
         }
     }
+}
+
+TEST(AdaptiveSampling, BadThresholdIsAnInputErrorWithItsPointer) {
+    expect_input_errors("noise_threshold", {"-0.1", "\"fine\"", "null", "true"});
     EXPECT_EQ(scene_from_text(R"({"film": {"noise_threshold": 0.02}})").film.noise_threshold,
               0.02f);
-    for (const char* bad : {"-1", "17", "1.5", "\"wide\""}) {
-        try {
-            scene_from_text(std::string(R"({"film": {"noise_window": )") + bad + "}}");
-            ADD_FAILURE() << bad << " accepted";
-        } catch (const Error& e) {
-            EXPECT_EQ(e.kind(), ErrorKind::Input) << bad;
-            EXPECT_NE(std::string(e.what()).find("/film/noise_window"), std::string::npos)
-                << e.what();
-        }
-    }
+    expect_input_errors("noise_window", {"-1", "17", "1.5", "\"wide\""});
     EXPECT_EQ(scene_from_text(R"({"film": {"noise_window": 0}})").film.noise_window, 0);
 }
 
