@@ -227,6 +227,33 @@ TEST(AdaptiveSampling, UnconvergedPixelsAreTheUniformRender) {
     EXPECT_EQ(channel(adaptive, "B"), channel(uniform, "B"));
 }
 
+// The adaptive renderer traces a whole tile one sample index at a time (the rule reads the
+// tile), a uniform one a row at a time: a pixel's samples are the same either way. With a
+// threshold every pixel meets at its pilot, the adaptive image is the uniform min_spp one, bit
+// for bit, with Embree camera rays and with the scanline surfaces (one call per row).
+TEST(AdaptiveSampling, TileBatchesAreTheRowBatchesSamples) {
+    for (const char* surface : {"\"ray\"", "\"scanline\""}) {
+        const auto render = [&](int spp, const char* threshold) {
+            return render_image(
+                       SceneRuntime(load_scene(KASUMI_SOURCE_DIR "/data/scenes/cornell_box.json",
+                                               {{"/film/width", "40"},
+                                                {"/film/height", "30"},
+                                                {"/film/spp", std::to_string(spp)},
+                                                {"/film/jitter", "false"},
+                                                {"/render/surface", surface},
+                                                {"/render/gi", "\"none\""},
+                                                {"/film/noise_threshold", threshold}})),
+                       quiet(2))
+                .film.to_image();
+        };
+        const Image adaptive = render(48, "1000"), uniform = render(16, "0");
+        EXPECT_EQ(channel(adaptive, "R"), channel(uniform, "R")) << surface;
+        EXPECT_EQ(channel(adaptive, "G"), channel(uniform, "G")) << surface;
+        const auto& counts = channel(adaptive, "samples.count");
+        EXPECT_EQ(*std::max_element(counts.begin(), counts.end()), 16.0f) << surface;
+    }
+}
+
 TEST(AdaptiveSampling, PlanSaysItRanWithItsThreshold) {
     const auto stage = [](const char* text) {
         for (const PlanStage& s : make_plan(scene_from_text(text)).stages)
