@@ -160,3 +160,21 @@ study gi data/scenes/cornell_box.json --res 32x32 --repeats 3 \
   --vary /render/gi=radiosity,photons,path --vary spp=1,4,16 \
   --set '/render/photons={"caustic_count":0}' \
   --reference-set '/render/gi="path"' --reference-spp 4096
+
+# Clouds, multiple scattering: adaptive sampling, film.noise_threshold 0 / 0.1 / 0.2 x
+# film.noise_window 0 (the pixel's own rule) / 1 / 2 (the neighbourhood pilot rule) x seeds 1-4
+# at 64 spp, with the quality levels' cloud sampling, against uniform renders of another seed
+# (docs/volumes.md "Adaptive sampling"; scene/quality.cpp). Shipped from THREADS=1 runs; the
+# cost the docs quote is callgrind's, docs/studies/cloud-ms-adaptive/instructions.txt.
+adaptive=(--spp 64 --vary /film/noise_threshold=0,0.1,0.2 --vary /film/noise_window=0,1,2
+  --vary /render/seed=1,2,3,4 --set /render/volume/shadow_roulette=0.05
+  --set '/render/volume/camera_transmittance="first_flight"' --set '/render/volume/estimator="ratio"'
+  --reference-set /film/noise_threshold=0 --reference-set /render/seed=999 --repeats 1)
+study cloud-ms-adaptive data/scenes/cloud.json --res 96x54 --reference-spp 2048 "${adaptive[@]}"
+[ -f "$cumulus_256" ] || "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
+study cloud-ms-adaptive-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
+  --set "/media/0/file=\"$cumulus_256\"" "${adaptive[@]}"
+if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then
+  study cloud-ms-adaptive-wdas data/scenes/cloud_wdas.json --res 96x54 --reference-spp 2048 \
+    "${adaptive[@]}"
+fi

@@ -89,6 +89,7 @@ std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRunti
     if (desc.film.noise_threshold > 0.0f) {
         metadata.emplace_back("noise_threshold", std::to_string(desc.film.noise_threshold));
         metadata.emplace_back("min_spp", std::to_string(desc.film.min_spp));
+        metadata.emplace_back("noise_window", std::to_string(desc.film.noise_window));
     }
     const DenoiseSettings& denoise = desc.film.denoise;
     if (denoise.enabled && !result.interrupted) {

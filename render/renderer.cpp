@@ -16,6 +16,7 @@
 #include <chrono>
 #include <mutex>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace kasumi {
@@ -67,33 +68,45 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
         if (cancelled())
             return;
         const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
-        const int x1 = std::min(x0 + tile, width);
-        const size_t row = static_cast<size_t>(x1 - x0);
+        const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
+        const int row = x1 - x0;
         RenderCounters local;
-        // A tile's row is traced one sample index at a time: its camera rays (neighbouring
-        // pixels) go through the BVH together (SurfaceScene::intersect_coherent), then each is
-        // shaded with its own generator. Every pixel gets the samples, generators and sums it
-        // got one pixel at a time (same images, bit for bit). With adaptive sampling only the
-        // row's pixels still sampling take the next sample index.
+        // Batches of rows are traced one sample index at a time: their camera rays
+        // (neighbouring pixels) go through the BVH together (SurfaceScene::intersect_coherent),
+        // then each is shaded with its own generator. Every pixel gets the samples, generators
+        // and sums it got one pixel at a time (same images, bit for bit). A uniform render's
+        // batch is one row of the tile; with adaptive sampling it is the whole tile (a pixel's
+        // count reads its neighbours in the tile, render/adaptive_sampling.h), and only the
+        // pixels still sampling take the next sample index.
+        const int batch_rows = criterion.threshold > 0.0 ? tile : 1;
+        const size_t batch = static_cast<size_t>(row) * batch_rows;
         const SurfaceScene* surfaces = scene.surfaces();
         // render.surface "scanline": the visible surfaces at the pixel centres come from the
         // scanline renderer instead of camera rays through Embree (same hits, same shading).
         const ScanlineSurface* scanline = scene.scanline_surface();
         std::vector<int> pixel_x;
-        std::vector<PixelSample> sums(row);
-        std::vector<int> hits(row);
-        std::vector<float> depth_sums(row);
-        std::vector<PixelConvergence> convergence(row);
-        std::vector<HalfSums> half_sums(denoise ? row : 0);
-        std::vector<size_t> active;  // the row's pixels still sampling, left to right
-        active.reserve(row);
+        std::vector<PixelSample> sums(batch);
+        std::vector<int> hits(batch);
+        std::vector<float> depth_sums(batch);
+        std::vector<PixelConvergence> convergence(batch);
+        std::vector<int> planned;  // window >= 1: each pixel's count, fixed after the pilot
+        std::vector<HalfSums> half_sums(denoise ? batch : 0);
+        std::vector<size_t> active;  // the batch's pixels still sampling, row-major
+        active.reserve(batch);
         std::vector<CameraSample> samples;
-        samples.reserve(row);
-        std::vector<Ray> rays(row);
-        std::vector<std::optional<SurfaceHit>> first_hits(row);
-        for (int y = y0; y < std::min(y0 + tile, height) && !stopped; ++y) {
+        samples.reserve(batch);
+        std::vector<Ray> rays(batch);
+        std::vector<std::optional<SurfaceHit>> first_hits(batch);
+        for (int yb = y0; yb < y1 && !stopped; yb += batch_rows) {
+            const int rows = std::min(batch_rows, y1 - yb);
+            const size_t pixels = static_cast<size_t>(row) * rows;
+            const auto pixel_of = [&](size_t i) {
+                return std::pair<int, int>(x0 + static_cast<int>(i % row),
+                                           yb + static_cast<int>(i / row));
+            };
             active.clear();
-            for (size_t i = 0; i < row; ++i) {
+            planned.clear();
+            for (size_t i = 0; i < pixels; ++i) {
                 sums[i] = PixelSample{};
                 sums[i].transmittance = Rgb(0.0f);
                 hits[i] = 0;
@@ -111,16 +124,22 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                 }
                 samples.clear();
                 for (size_t k = 0; k < active.size(); ++k) {
-                    samples.push_back(camera_sample(scene, x0 + static_cast<int>(active[k]), y, s,
-                                                    options.frame));
+                    const auto [x, y] = pixel_of(active[k]);
+                    samples.push_back(camera_sample(scene, x, y, s, options.frame));
                     rays[k] = samples[k].ray;
                 }
                 if (scanline != nullptr) {
-                    pixel_x.clear();
-                    for (size_t i : active)
-                        pixel_x.push_back(x0 + static_cast<int>(i));
-                    scanline->first_hits(y, pixel_x.data(), rays.data(), active.size(),
-                                         first_hits.data());
+                    // One call per row of the batch (active is row-major).
+                    for (size_t k0 = 0; k0 < active.size();) {
+                        const int y = pixel_of(active[k0]).second;
+                        pixel_x.clear();
+                        size_t k1 = k0;
+                        for (; k1 < active.size() && pixel_of(active[k1]).second == y; ++k1)
+                            pixel_x.push_back(pixel_of(active[k1]).first);
+                        scanline->first_hits(y, pixel_x.data(), rays.data() + k0, k1 - k0,
+                                             first_hits.data() + k0);
+                        k0 = k1;
+                    }
                 } else if (surfaces != nullptr)
                     surfaces->intersect_coherent(rays.data(), active.size(), first_hits.data());
                 for (size_t k = 0; k < active.size(); ++k) {
@@ -147,20 +166,37 @@ RenderResult render_image(const SceneRuntime& scene, const RenderOptions& option
                     if (denoise)
                         half_sums[i].add(s, p);
                 }
-                // Each pixel decides from its own samples alone (render/adaptive_sampling.h).
-                active.erase(std::remove_if(active.begin(), active.end(),
-                                            [&](size_t i) {
-                                                return !keeps_sampling(convergence[i], criterion);
-                                            }),
-                             active.end());
+                // The stopping rule (render/adaptive_sampling.h): window 0 reads each pixel's
+                // own samples after every round; a window fixes every count once, when the
+                // whole batch has its pilot (all pixels sample until then).
+                if (criterion.window > 0 && criterion.threshold > 0.0) {
+                    if (s + 1 == criterion.min_spp)
+                        planned = neighbourhood_sample_counts(
+                            std::vector<PixelConvergence>(convergence.begin(),
+                                                          convergence.begin() + pixels),
+                            row, rows, criterion);
+                    const int taken = s + 1;
+                    active.erase(
+                        std::remove_if(active.begin(), active.end(),
+                                       [&](size_t i) {
+                                           return taken >= criterion.max_spp ||
+                                                  (!planned.empty() && taken >= planned[i]);
+                                       }),
+                        active.end());
+                } else
+                    active.erase(
+                        std::remove_if(
+                            active.begin(), active.end(),
+                            [&](size_t i) { return !keeps_sampling(convergence[i], criterion); }),
+                        active.end());
             }
             if (!complete)
                 break;
-            for (size_t i = 0; i < row; ++i) {
-                result.film.set_pixel(x0 + static_cast<int>(i), y, sums[i], convergence[i].n,
-                                      hits[i], depth_sums[i]);
+            for (size_t i = 0; i < pixels; ++i) {
+                const auto [x, y] = pixel_of(i);
+                result.film.set_pixel(x, y, sums[i], convergence[i].n, hits[i], depth_sums[i]);
                 if (denoise)
-                    halves.set_pixel(x0 + static_cast<int>(i), y, half_sums[i], convergence[i].n);
+                    halves.set_pixel(x, y, half_sums[i], convergence[i].n);
             }
         }
         {

@@ -240,11 +240,21 @@ PlanStage adaptive_sampling_plan_stage(const FilmDesc& film) {
                 "film.noise_threshold is 0: every pixel takes " + std::to_string(film.spp) +
                     " samples"};
     std::ostringstream reason;
-    reason << "film.noise_threshold " << film.noise_threshold
-           << ": a pixel stops when the standard error of its mean luminance is below that "
-              "fraction of the mean (or of "
-           << film.noise_floor_cd_m2 << " cd/m2), after " << std::min(film.min_spp, film.spp)
-           << " to " << film.spp << " samples; samples.count AOV";
+    reason << "film.noise_threshold " << film.noise_threshold;
+    if (film.noise_window > 0)
+        reason << ", noise_window " << film.noise_window << ": after a pilot of "
+               << std::min(film.min_spp, film.spp) << " samples a pixel takes the count (up to "
+               << film.spp << ") at which its standard error is that fraction of the mean (or of "
+               << film.noise_floor_cd_m2
+               << " cd/m2), the variance and mean from the pilots of its neighbours within "
+               << film.noise_window
+               << " pixels in the tile, itself left out (no early-stop bias); samples.count AOV";
+    else
+        reason << ", noise_window 0: a pixel stops when the standard error of its own mean "
+                  "luminance is below that fraction of the mean (or of "
+               << film.noise_floor_cd_m2 << " cd/m2), after " << std::min(film.min_spp, film.spp)
+               << " to " << film.spp
+               << " samples (biased where pixels have heavy tails); samples.count AOV";
     return {"adaptive-sampling", true, reason.str()};
 }
 

@@ -70,17 +70,22 @@ namespace {
 //   against the single-scattering answer (the plan's bound states what it leaves out); the
 //   other levels choose multiple scattering there: 0.088 at 16 spp, /4 at 64 (1.37 / 0.337 /
 //   0.088 at 1 / 4 / 16 spp: 1/spp), and 1.37 / 256 for reference.
-// - film.noise_threshold (adaptive sampling): no level sets it yet. cloud.json at 256 spp
-//   (kasumi study data/scenes/cloud.json --vary /film/noise_threshold=0,0.05 --spp 256
-//   --res 96x54 --reference-spp 4096 --reference-set /film/noise_threshold=0 --repeats 3,
-//   2026-12-04): uniform 1.29 s, relative MSE 0.00294; threshold 0.05 0.95 s, 0.00333:
-//   1.2x the efficiency but 13% more error per render, not a win at equal error; the same
-//   study on fog_street.json did not finish (its 4096-spp reference takes > 6 min here).
-//   Threshold 0.1 at 64 spp (docs/studies/cloud-ms-sampling*, 2026-12-05) biases the WDAS
-//   cloud's mean luminance by -2.6% to -3.2% (4 seeds; without it +0.2%): its pixels'
-//   luminance is heavy-tailed, and a pixel whose first 16 samples miss the rare bright paths
-//   has a low mean with a small spread and stops (the early-stop bias, render/
-//   adaptive_sampling.h; -0.4% on cloud.json): not set by any level.
+// - grid_noise_threshold (film.noise_threshold with VDB media; adaptive sampling): final sets
+//   0.1 where its own 64 spp is used, with the neighbourhood pilot rule (film.noise_window 2,
+//   the default), which has no early-stop bias (render/adaptive_sampling.h). Study
+//   (docs/studies/cloud-ms-adaptive*, 2026-12-05): 64 spp, 96x54, seeds 1-4, the levels'
+//   cloud sampling (ratio, shadow roulette 0.05, first flight),
+//   references at 2048 spp (cumulus 1024) of another seed; cost in instructions of the whole
+//   process (callgrind, seed 1, one thread). Efficiency 1/(rel. MSE x instructions) against
+//   uniform 64 spp: cloud.json 1.24x (rel. MSE 0.0112 -> 0.0122, 1704 -> 1263 M), 256³ cumulus
+//   1.27x (0.0143 -> 0.0149, 1709 -> 1290 M), WDAS 1.18x (0.0119 -> 0.0122, 2146 -> 1775 M);
+//   the mean luminance of each seed within 0.04% of the uniform render of the same seed. The
+//   pixel's own rule (window 0) looked more efficient (1.28-1.41x) but moved the mean
+//   luminance by -0.4% (cloud.json) and -2.2% (WDAS): biased, not used. The expected cloud
+//   error of final is the study's 0.0122 (cloud.json, 64 spp, threshold 0.1). Draft (4 spp)
+//   and default (16) leave it off: their spp is at most film.min_spp (16), where no pixel can
+//   stop early. A scene that gives film.spp keeps uniform sampling (the threshold was measured
+//   at 64 spp only; at 256 spp the old rule lost, docs/volumes.md).
 // - grid_shadow_roulette and grid_camera_transmittance, multiple scattering in VDB media
 //   (docs/studies/cloud-ms-sampling*, 2026-12-05; estimator ratio, 16 spp, seeds 1-4, against
 //   a 1024-spp (4096 for cloud.json) reference of today's settings; cost in instructions of
@@ -92,7 +97,8 @@ namespace {
 //   0.94x / 0.93x (0.0429 -> 0.0551, 588 -> 491 M: its finer rim adds the first flight's
 //   T(1 - T) L² variance). Both win 1.5x on two of the three clouds and lose 7% on the third,
 //   so draft, default and final take both; reference keeps today's estimators. The expected
-//   cloud errors of default and final are the study's (0.0416 at 16 spp, 0.0111 at 64).
+//   cloud error of default is the study's (0.0416 at 16 spp; final's: grid_noise_threshold, above,
+//   with adaptive sampling).
 // - render.volume.free_flight (decomposition tracking) and nee_roulette: no level sets them.
 //   cloud.json, multiple scattering, 16 spp, six seeds (docs/volumes.md, decomposition
 //   tracking, 2026-12-04): efficiency 38 /s today against 43 decomposition, 42 nee_roulette, 45
@@ -101,13 +107,13 @@ namespace {
 //   at load 15-19): no win at equal error on all three clouds.
 constexpr QualityPreset kTable[] = {
     {QualityLevel::Draft, 4, 1.6, "ratio", 1, INFINITY, 0.00515, 0.215, 0.008, 4.0, "march",
-     0.000244, "unbiased-march", 0.05f, CameraTransmittance::FirstFlight},
+     0.000244, "unbiased-march", 0.05f, CameraTransmittance::FirstFlight, 0.0},
     {QualityLevel::Default, 16, 1.6, "ratio", 4, 0.1, 0.00134, 0.0416, 0.0073, 4.0, "march", 0.088,
-     "unbiased-march", 0.05f, CameraTransmittance::FirstFlight},
-    {QualityLevel::Final, 64, 1.6, "ratio", 4, 0.02, 0.000335, 0.0111, 0.0073, 4.0, "march", 0.022,
-     "unbiased-march", 0.05f, CameraTransmittance::FirstFlight},
+     "unbiased-march", 0.05f, CameraTransmittance::FirstFlight, 0.0},
+    {QualityLevel::Final, 64, 1.6, "ratio", 4, 0.02, 0.000335, 0.0122, 0.0073, 4.0, "march", 0.022,
+     "unbiased-march", 0.05f, CameraTransmittance::FirstFlight, 0.1},
     {QualityLevel::Reference, 256, 0.2, "ratio", 16, 0.0, 8.9e-5, 0.0028, 0.00023, 1.0, "march",
-     0.0054, "unbiased-march", 0.0f, CameraTransmittance::Walk},
+     0.0054, "unbiased-march", 0.0f, CameraTransmittance::Walk, 0.0},
 };
 
 bool is_extended_light(const Json& light) {
@@ -187,6 +193,7 @@ QualityChoice apply_quality(SceneDocument& doc) {
     }
     choice.level = level;
     const QualityPreset& preset = quality_preset(*level);
+    const bool level_spp = !doc.contains("/film/spp");
     fill(doc, "/film/spp", preset.spp, choice);
 
     bool homogeneous = false, grid = false, height_fog = false;
@@ -204,6 +211,8 @@ QualityChoice apply_quality(SceneDocument& doc) {
         fill(doc, "/render/volume/step_m", preset.height_fog_step_m, choice);
     if (grid)
         fill(doc, "/render/volume/estimator", preset.grid_estimator, choice);
+    if (grid && level_spp && preset.grid_noise_threshold > 0.0)
+        fill(doc, "/film/noise_threshold", preset.grid_noise_threshold, choice);
     else if (height_fog)
         fill(doc, "/render/volume/estimator", preset.height_fog_estimator, choice);
     bool extended = false;

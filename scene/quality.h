@@ -45,6 +45,10 @@ struct QualityPreset {
     /// clouds (quality.cpp).
     float grid_shadow_roulette;
     CameraTransmittance grid_camera_transmittance;
+    /// film.noise_threshold with VDB media, set only where the level's film.spp is used (0:
+    /// off); adaptive sampling's neighbourhood rule (render/adaptive_sampling.h), from the
+    /// same cloud studies (quality.cpp).
+    double grid_noise_threshold;
 };
 
 const QualityPreset& quality_preset(QualityLevel level);

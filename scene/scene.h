@@ -38,7 +38,10 @@ struct FilmDesc {
     /// Luminance (cd/m²) below which a pixel's standard error counts relative to this instead of
     /// its mean: black and near-black pixels converge on an absolute error.
     float noise_floor_cd_m2 = 1e-3f;
-    int min_spp = 16;    ///< adaptive: samples every pixel takes before it may stop, >= 2
+    int min_spp = 16;  ///< adaptive: samples every pixel takes before it may stop, >= 2
+    /// adaptive: radius (pixels, [0, 16]) of the neighbours whose pilot samples fix a pixel's
+    /// count (render/adaptive_sampling.h); 0: the pixel's own samples (biased on heavy tails)
+    int noise_window = 2;
     bool jitter = true;  ///< false: every sample through the pixel centre (peer comparisons)
     /// EXR pixel type of R, G, B, A (AOVs stay float); half saturates beyond 65504 (exr_io.h)
     ExrPixelType pixel_type = ExrPixelType::Float;

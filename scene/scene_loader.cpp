@@ -96,6 +96,8 @@ FilmDesc parse_film(const JsonNode& node) {
         film.noise_floor_cd_m2 = v->positive();
     if (auto v = reader.optional("min_spp"))
         film.min_spp = parse_int_in(*v, 2, 1 << 20);
+    if (auto v = reader.optional("noise_window"))
+        film.noise_window = parse_int_in(*v, 0, 16);
     if (auto v = reader.optional("pixel_type")) {
         if (!parse_exr_pixel_type(v->as_string(), film.pixel_type))
             v->fail("must be \"float\" or \"half\"");

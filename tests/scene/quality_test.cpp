@@ -285,7 +285,25 @@ TEST(ScatteringBound, MultiplyScatteredCloudsTakeTheLevelsShadowRouletteAndCamer
     EXPECT_EQ(by_default.volume.camera_transmittance, CameraTransmittance::FirstFlight);
     const Chosen final_level = choose(R"({"quality": "final"})");
     EXPECT_EQ(final_level.volume.camera_transmittance, CameraTransmittance::FirstFlight);
-    EXPECT_FALSE(final_level.doc.contains("/film/noise_threshold"));  // biased on WDAS
+    // Final's 64 spp with a grid: adaptive sampling at the level's threshold (the unbiased
+    // neighbourhood rule, film.noise_window's default); draft and default (spp <= min_spp)
+    // and reference leave it off.
+    ASSERT_TRUE(final_level.doc.contains("/film/noise_threshold"));
+    EXPECT_DOUBLE_EQ(final_level.doc.get("/film/noise_threshold").get<double>(),
+                     quality_preset(QualityLevel::Final).grid_noise_threshold);
+    EXPECT_GT(quality_preset(QualityLevel::Final).grid_noise_threshold, 0.0);
+    EXPECT_NE(std::find(final_level.choice.applied.begin(), final_level.choice.applied.end(),
+                        "/film/noise_threshold = 0.1"),
+              final_level.choice.applied.end());
+    EXPECT_FALSE(by_default.doc.contains("/film/noise_threshold"));
+    // A scene that gives film.spp keeps uniform sampling (the threshold was measured at 64).
+    SceneDocument own_spp(
+        parse_json_text(R"({"film": {"spp": 256}, "media": [{"type": "vdb", "file": "x.vdb"}],
+                            "render": {"quality": "final"}})",
+                        "t.json"),
+        "t.json");
+    apply_quality(own_spp);
+    EXPECT_FALSE(own_spp.contains("/film/noise_threshold"));
     // Given by the scene: the integrator (multiple) and the roulette; the camera transmittance
     // still comes from the level.
     const Chosen given = choose(
@@ -304,6 +322,7 @@ TEST(ScatteringBound, MultiplyScatteredCloudsTakeTheLevelsShadowRouletteAndCamer
     EXPECT_EQ(reference.volume.shadow_roulette, 0.0f);
     EXPECT_EQ(reference.volume.camera_transmittance, CameraTransmittance::Walk);
     EXPECT_FALSE(reference.doc.contains("/film/noise_threshold"));
+    EXPECT_FALSE(draft.doc.contains("/film/noise_threshold"));
 }
 
 }  // namespace
