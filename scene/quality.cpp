@@ -211,10 +211,10 @@ QualityChoice apply_quality(SceneDocument& doc) {
         fill(doc, "/render/volume/step_m", preset.height_fog_step_m, choice);
     if (grid)
         fill(doc, "/render/volume/estimator", preset.grid_estimator, choice);
-    if (grid && level_spp && preset.grid_noise_threshold > 0.0)
-        fill(doc, "/film/noise_threshold", preset.grid_noise_threshold, choice);
     else if (height_fog)
         fill(doc, "/render/volume/estimator", preset.height_fog_estimator, choice);
+    if (grid && level_spp && preset.grid_noise_threshold > 0.0)
+        fill(doc, "/film/noise_threshold", preset.grid_noise_threshold, choice);
     bool extended = false;
     const Json* lights = doc.find("/lights");
     if (lights != nullptr && lights->is_array()) {

@@ -98,6 +98,14 @@ TEST(Quality, HeightFogTakesItsOwnStepAndEstimator) {
     apply_quality(doc);
     EXPECT_EQ(doc.json()["render"]["volume"]["estimator"].get<std::string>(),
               quality_preset(QualityLevel::Final).grid_estimator);
+    // The same at a level without adaptive sampling: still the grid's estimator, and nothing
+    // reported as the scene's own (the fog's fill must not run after the grid's).
+    doc = doc_with(R"({"media": [)" + fog +
+                   R"(, {"type": "vdb", "file": "x.vdb"}], "render": {"quality": "default"}})");
+    c = apply_quality(doc);
+    EXPECT_EQ(doc.json()["render"]["volume"]["estimator"].get<std::string>(),
+              quality_preset(QualityLevel::Default).grid_estimator);
+    EXPECT_TRUE(c.kept.empty());
 }
 
 // The plan of a lone height fog at draft: the level's choices, the studies' expected error, and
