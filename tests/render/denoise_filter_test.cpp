@@ -19,6 +19,7 @@ using denoise_test::exponential;
 using denoise_test::gaussian;
 using denoise_test::kCentre;
 using denoise_test::kSize;
+using denoise_test::straight_edge_bound;
 using denoise_test::synthetic;
 
 /// The raw and denoised value of pixel (x, kCentre) over `trials` independent images.
@@ -72,10 +73,7 @@ MeanAndError edge_bias(int n, int trials) {
 // the standard error of a half's mean, and at least halves when the samples quadruple
 // (consistency). 300 images each: false failure ~1e-4.
 TEST(NlmFilter, EdgeBiasBoundedAndShrinksWithSamples) {
-    const DenoiseSettings s;
-    const auto bound = [&](int n) {
-        return 0.61 * s.k * std::sqrt(2.0 * s.patch + 1.0) / std::sqrt(n / 2.0);
-    };
+    const auto bound = [](int n) { return straight_edge_bound(DenoiseSettings{}, n); };
     const MeanAndError b16 = edge_bias(16, 300);
     const MeanAndError b64 = edge_bias(64, 300);
     std::printf("edge bias: 16 spp %.4f +- %.4f (bound %.4f), 64 spp %.4f +- %.4f (bound %.4f)\n",

@@ -15,11 +15,7 @@
 namespace kasumi {
 namespace {
 
-using denoise_test::exponential;
-using denoise_test::gaussian;
-using denoise_test::kCentre;
-using denoise_test::kSize;
-using denoise_test::synthetic;
+using namespace denoise_test;  // NOLINT: the synthetic images of tests/render/denoise_synthetic.h
 
 using Draw = std::function<float(int, Pcg32&)>;
 
@@ -147,10 +143,7 @@ MeanAndError selected_edge_bias(int n, int trials) {
 // is 4x that, the strongest candidate's) and at most ~half of it left at 4x the samples.
 // Measured 0.272 +- 0.004 at 16 spp (bound 0.485), 0.044 +- 0.003 at 64 (0.243). 300 images.
 TEST(SureSelection, EdgeBiasBoundedAndFalling) {
-    const DenoiseSettings s;
-    const auto bound = [&](int n) {
-        return 0.61 * s.k * std::sqrt(2.0 * s.patch + 1.0) / std::sqrt(n / 2.0);
-    };
+    const auto bound = [](int n) { return straight_edge_bound(DenoiseSettings{}, n); };
     const MeanAndError b16 = selected_edge_bias(16, 300);
     const MeanAndError b64 = selected_edge_bias(64, 300);
     std::printf(

@@ -4,6 +4,7 @@
 // known exactly.
 #include "core/rng.h"
 #include "render/denoise/half_buffers.h"
+#include "scene/scene.h"
 
 #include <cmath>
 #include <cstdint>
@@ -45,6 +46,13 @@ inline float gaussian(Pcg32& rng) {
     const double u1 = 1.0 - static_cast<double>(rng.next_float());
     const double u2 = rng.next_float();
     return static_cast<float>(std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2));
+}
+
+/// The straight-edge bias bound of the filter at settings s (render/denoise/nlm_filter.h),
+/// 0.61 k sqrt(2 patch + 1) standard errors of a half's mean, for unit noise per sample and n
+/// samples a pixel (n / 2 a half).
+inline double straight_edge_bound(const DenoiseSettings& s, int n) {
+    return 0.61 * s.k * std::sqrt(2.0 * s.patch + 1.0) / std::sqrt(n / 2.0);
 }
 
 }  // namespace denoise_test
