@@ -112,6 +112,20 @@ study cloud-denoise-select data/scenes/cloud.json --res 96x54 --reference-spp 40
   --vary /render/volume/shadow_roulette=0,0.05 --vary /render/volume/camera_transmittance=walk,first_flight \
   --reference-set /render/seed=999 --reference-set /film/denoise=off \
   --reference-set /render/volume/shadow_roulette=0 --reference-set '/render/volume/camera_transmittance="walk"'
+select_grid=(--vary spp=64 --vary /render/seed=1,2,3,4 --vary '/film/denoise=off,nlm,{"select":true}'
+  --vary /render/volume/shadow_roulette=0,0.05 --vary /render/volume/camera_transmittance=walk,first_flight
+  --reference-set /render/seed=999 --reference-set /film/denoise=off
+  --reference-set /render/volume/shadow_roulette=0
+  --reference-set '/render/volume/camera_transmittance="walk"' --repeats 1)
+if [ "${#selected[@]}" -eq 0 ] || [[ " ${selected[*]} " =~ " cloud-denoise-select-cumulus " ]]; then
+  "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
+fi
+study cloud-denoise-select-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
+  --set "/media/0/file=\"$cumulus_256\"" "${select_grid[@]}"
+if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then
+  study cloud-denoise-select-wdas data/scenes/cloud_wdas.json --res 64x64 --reference-spp 1024 \
+    "${select_grid[@]}"
+fi
 
 # Transmittance probes, estimator x samples: exact errors where a closed form exists. The
 # homogeneous fog against Beer-Lambert exp(-tau) (the march integrates tau analytically there,
