@@ -23,7 +23,7 @@
 /// B_p, -2 alpha beta (Cov(A'_p, B_p) + Cov(B'_p, A_p)), second order in the weights' noise.
 /// For the raw mean (W = 1) e = Var(R) exactly.
 ///
-/// Selection: e / (F² + eps) (relative, as the studies measure; F the plain filter's output,
+/// Selection: e / (F² + eps) (relative, as the studies measure; F the strongest filter's output,
 /// eps = (0.01 Y)² with Y the image's mean), summed over the channels and a
 /// (2 kSelectionRadius + 1)² window of valid pixels; the candidate of least sum is the pixel's
 /// choice (ties to the weaker). The output averages, at p, the outputs of the candidates chosen
