@@ -107,7 +107,7 @@ if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then
 fi
 # The denoiser's strength selected per pixel by a SURE estimate of its error (film.denoise
 # "select", docs/denoising.md) beside the plain filter: the same grid and reference.
-study cloud-denoise-select data/scenes/cloud.json --res 96x54 --reference-spp 4096 --repeats 3 \
+study cloud-denoise-select data/scenes/cloud.json --res 96x54 --reference-spp 4096 --repeats 1 \
   --vary spp=16,64 --vary /render/seed=1,2,3,4,5,6 --vary '/film/denoise=off,nlm,{"select":true}' \
   --vary /render/volume/shadow_roulette=0,0.05 --vary /render/volume/camera_transmittance=walk,first_flight \
   --reference-set /render/seed=999 --reference-set /film/denoise=off \
