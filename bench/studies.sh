@@ -79,7 +79,8 @@ ms_sampling=(--vary spp=16,64 --vary /render/volume/shadow_roulette=0,0.05
 study cloud-ms-sampling data/scenes/cloud.json --res 96x54 --reference-spp 4096 "${ms_sampling[@]}"
 cumulus_256="${TMPDIR:-/tmp}/kasumi_cumulus_256.vdb"
 if [ "${#selected[@]}" -eq 0 ] || [[ " ${selected[*]} " =~ " cloud-ms-sampling-cumulus " ]] ||
-  [[ " ${selected[*]} " =~ " cloud-denoise-cumulus " ]]; then
+  [[ " ${selected[*]} " =~ " cloud-denoise-cumulus " ]] ||
+  [[ " ${selected[*]} " =~ " cloud-denoise-select-cumulus " ]]; then
   "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
 fi
 study cloud-ms-sampling-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
@@ -117,9 +118,6 @@ select_grid=(--vary spp=64 --vary /render/seed=1,2,3,4 --vary '/film/denoise=off
   --reference-set /render/seed=999 --reference-set /film/denoise=off
   --reference-set /render/volume/shadow_roulette=0
   --reference-set '/render/volume/camera_transmittance="walk"' --repeats 1)
-if [ "${#selected[@]}" -eq 0 ] || [[ " ${selected[*]} " =~ " cloud-denoise-select-cumulus " ]]; then
-  "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
-fi
 study cloud-denoise-select-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
   --set "/media/0/file=\"$cumulus_256\"" "${select_grid[@]}"
 if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then
