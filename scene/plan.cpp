@@ -263,7 +263,8 @@ PlanStage denoise_plan_stage(const FilmDesc& film) {
            << "; bias <~ 0.86 k standard errors of a half's mean; raw beauty in noisy.R/G/B";
     if (d.select)
         reason << "; select: per pixel the raw mean or the filter at 1, 2 or 4 times k and "
-                  "k_feature, whichever has the least SURE estimate of the error over 7x7 pixels";
+                  "k_feature, whichever has the least SURE estimate of the error over 7x7 pixels "
+                  "(bias up to that of 4 k)";
     if (fewest < 4)
         reason << "; pixels of fewer than 4 samples (here " << fewest
                << ") have no variance estimate in a half and stay raw";
