@@ -79,7 +79,8 @@ ms_sampling=(--vary spp=16,64 --vary /render/volume/shadow_roulette=0,0.05
 study cloud-ms-sampling data/scenes/cloud.json --res 96x54 --reference-spp 4096 "${ms_sampling[@]}"
 cumulus_256="${TMPDIR:-/tmp}/kasumi_cumulus_256.vdb"
 if [ "${#selected[@]}" -eq 0 ] || [[ " ${selected[*]} " =~ " cloud-ms-sampling-cumulus " ]] ||
-  [[ " ${selected[*]} " =~ " cloud-denoise-cumulus " ]]; then
+  [[ " ${selected[*]} " =~ " cloud-denoise-cumulus " ]] ||
+  [[ " ${selected[*]} " =~ " cloud-denoise-select-cumulus " ]]; then
   "$kasumi" make-cloud --res 256 --seed 7 -o "$cumulus_256" >/dev/null
 fi
 study cloud-ms-sampling-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
@@ -104,6 +105,24 @@ study cloud-denoise-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1
 if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then
   study cloud-denoise-wdas data/scenes/cloud_wdas.json --res 64x64 --reference-spp 1024 --repeats 2 \
     --vary spp=16 --vary /render/seed=1,2,3,4 "${denoise_grid[@]}"
+fi
+# The denoiser's strength selected per pixel by a SURE estimate of its error (film.denoise
+# "select", docs/denoising.md) beside the plain filter: the same grid and reference.
+study cloud-denoise-select data/scenes/cloud.json --res 96x54 --reference-spp 4096 --repeats 1 \
+  --vary spp=16,64 --vary /render/seed=1,2,3,4,5,6 --vary '/film/denoise=off,nlm,{"select":true}' \
+  --vary /render/volume/shadow_roulette=0,0.05 --vary /render/volume/camera_transmittance=walk,first_flight \
+  --reference-set /render/seed=999 --reference-set /film/denoise=off \
+  --reference-set /render/volume/shadow_roulette=0 --reference-set '/render/volume/camera_transmittance="walk"'
+select_grid=(--vary spp=64 --vary /render/seed=1,2,3,4 --vary '/film/denoise=off,nlm,{"select":true}'
+  --vary /render/volume/shadow_roulette=0,0.05 --vary /render/volume/camera_transmittance=walk,first_flight
+  --reference-set /render/seed=999 --reference-set /film/denoise=off
+  --reference-set /render/volume/shadow_roulette=0
+  --reference-set '/render/volume/camera_transmittance="walk"' --repeats 1)
+study cloud-denoise-select-cumulus data/scenes/cloud.json --res 96x54 --reference-spp 1024 \
+  --set "/media/0/file=\"$cumulus_256\"" "${select_grid[@]}"
+if [ -f ../shared/data/wdas_cloud_sixteenth.vdb ]; then
+  study cloud-denoise-select-wdas data/scenes/cloud_wdas.json --res 64x64 --reference-spp 1024 \
+    "${select_grid[@]}"
 fi
 
 # Transmittance probes, estimator x samples: exact errors where a closed form exists. The

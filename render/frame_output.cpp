@@ -97,7 +97,8 @@ std::vector<std::pair<std::string, std::string>> frame_metadata(const SceneRunti
         metadata.emplace_back("denoise", "nlm radius " + std::to_string(denoise.radius) +
                                              " patch " + std::to_string(denoise.patch) + " k " +
                                              std::to_string(denoise.k) + " k_feature " +
-                                             std::to_string(denoise.k_feature));
+                                             std::to_string(denoise.k_feature) +
+                                             (denoise.select ? " select" : ""));
     }
     for (auto& kv : stage_metadata(times, scene.plan()))
         metadata.push_back(std::move(kv));

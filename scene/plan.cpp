@@ -271,6 +271,10 @@ PlanStage denoise_plan_stage(const FilmDesc& film) {
            << 2 * d.radius + 1 << "x" << 2 * d.radius + 1 << ", patch " << 2 * d.patch + 1 << "x"
            << 2 * d.patch + 1 << ", k " << d.k << ", transmittance feature k " << d.k_feature
            << "; bias <~ 0.86 k standard errors of a half's mean; raw beauty in noisy.R/G/B";
+    if (d.select)
+        reason << "; select: per pixel the raw mean or the filter at 1, 2 or 4 times k and "
+                  "k_feature, whichever has the least SURE estimate of the error over 7x7 pixels "
+                  "(bias up to that of 4 k)";
     if (fewest < 4)
         reason << "; pixels of fewer than 4 samples (here " << fewest
                << ") have no variance estimate in a half and stay raw";

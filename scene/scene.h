@@ -26,6 +26,10 @@ struct DenoiseSettings {
     int patch = 3;           ///< patch half-width, pixels, [0, 8]
     float k = 0.85f;         ///< colour strength: weights fall past ~k standard errors, (0, 4)
     float k_feature = 0.6f;  ///< transmittance feature strength, (0, 16)
+    /// true: per pixel, the raw mean or the filter at 1, 2 or 4 times (k, k_feature), whichever
+    /// has the least estimated MSE (SURE, render/denoise/sure_selection.h); false: the filter
+    /// at (k, k_feature) everywhere
+    bool select = false;
 };
 
 struct FilmDesc {

@@ -48,7 +48,8 @@ CameraDesc parse_camera(const JsonNode& node) {
     return camera;
 }
 
-/// film.denoise: "off", "nlm", or an object {"method", "radius", "patch", "k", "k_feature"}.
+/// film.denoise: "off", "nlm", or an object {"method", "radius", "patch", "k", "k_feature",
+/// "select"}.
 DenoiseSettings parse_denoise(const JsonNode& node) {
     DenoiseSettings denoise;
     const auto method = [&](const JsonNode& v) {
@@ -56,7 +57,7 @@ DenoiseSettings parse_denoise(const JsonNode& node) {
         if (name != "off" && name != "nlm")
             v.fail(
                 "must be \"off\", \"nlm\" or an object {\"method\", \"radius\", \"patch\", "
-                "\"k\", \"k_feature\"}");
+                "\"k\", \"k_feature\", \"select\"}");
         return name == "nlm";
     };
     if (!node.is_object()) {
@@ -75,6 +76,8 @@ DenoiseSettings parse_denoise(const JsonNode& node) {
         denoise.k = v->in_open(0.0f, 4.0f);
     if (auto v = reader.optional("k_feature"))
         denoise.k_feature = v->in_open(0.0f, 16.0f);
+    if (auto v = reader.optional("select"))
+        denoise.select = v->as_bool();
     reader.finish();
     return denoise;
 }

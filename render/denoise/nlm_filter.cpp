@@ -1,5 +1,7 @@
 #include "render/denoise/nlm_filter.h"
 
+#include "render/denoise/sure_selection.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -52,12 +54,25 @@ void colour_distances(const HalfImage& guide, const float* __restrict valid, siz
 
 }  // namespace
 
-void cross_filter(const HalfImage& guide, const HalfImage& filtered,
-                  const std::vector<unsigned char>& valid, int width, int height,
-                  const DenoiseSettings& settings, std::vector<float> out[3]) {
+void cross_filter_strengths(const HalfImage& guide, const HalfImage& filtered,
+                            const std::vector<unsigned char>& valid, int width, int height,
+                            const DenoiseSettings& settings,
+                            const std::vector<StrengthScale>& scales,
+                            std::vector<CrossFiltered>& out) {
     const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-    for (int c = 0; c < 3; ++c)
-        out[c].assign(pixels, 0.0f);
+    const size_t strengths = scales.size();
+    out.assign(strengths, CrossFiltered{});
+    // The patch distance at strength k s is the one at k times 1 / s² (kEpsilon aside), and the
+    // same for the feature: one distance pass serves every strength; s = 1 multiplies by
+    // exactly 1 (the plain filter, bit for bit).
+    std::vector<float> inv_scale2(strengths), inv_feature_scale2(strengths);
+    for (size_t s = 0; s < strengths; ++s) {
+        inv_scale2[s] = 1.0f / (scales[s].k * scales[s].k);
+        inv_feature_scale2[s] = 1.0f / (scales[s].k_feature * scales[s].k_feature);
+        for (int c = 0; c < 3; ++c)
+            out[s].rgb[c].assign(pixels, 0.0f);
+        out[s].weight_sum.assign(pixels, 1.0f);
+    }
     const int r = settings.radius, f = settings.patch;
     const float k2 = settings.k * settings.k;
     const float kf2 = settings.k_feature * settings.k_feature;
@@ -72,7 +87,8 @@ void cross_filter(const HalfImage& guide, const HalfImage& filtered,
         std::vector<float> row_d(halo_rows * static_cast<size_t>(width)),
             row_n(halo_rows * static_cast<size_t>(width));
         std::vector<float> patch_d(width), patch_n(width);
-        std::vector<float> weight_sum(static_cast<size_t>(kBandRows) * width);
+        const size_t band_pixels = static_cast<size_t>(kBandRows) * width;
+        std::vector<float> weight_sum(strengths * band_pixels);
         std::vector<float> value_sum[3];
         for (int band = b.begin(); band < b.end(); ++band) {
             const int y0 = band * kBandRows, y1 = std::min(height, y0 + kBandRows);
@@ -80,7 +96,7 @@ void cross_filter(const HalfImage& guide, const HalfImage& filtered,
             const int d0 = std::max(0, y0 - f), d1 = std::min(height, y1 + f);
             std::fill(weight_sum.begin(), weight_sum.end(), 0.0f);
             for (auto& v : value_sum)
-                v.assign(static_cast<size_t>(kBandRows) * width, 0.0f);
+                v.assign(strengths * band_pixels, 0.0f);
             for (int dy = -r; dy <= r; ++dy) {
                 for (int dx = -r; dx <= r; ++dx) {
                     const int xs = std::max(0, -dx), xe = std::min(width, width - dx);
@@ -135,26 +151,34 @@ void cross_filter(const HalfImage& guide, const HalfImage& filtered,
                             const float fd = guide.feature[prow + x] - guide.feature[qrow + x];
                             const float df2 = (fd * fd - (wp + std::min(wp, wq))) /
                                               (kf2 * std::max(kFeatureTau, wp + wq));
-                            // min(exp(-a), exp(-b)) = exp(-max(a, b)): one exponential.
-                            const float a = std::max(patch_d[x] / patch_n[x], df2);
-                            if (!(a < kNegligible))
-                                continue;  // weight < 1e-9 (and no slow underflowing exp)
-                            const float w = std::exp(-std::max(0.0f, a));
-                            weight_sum[out_row + x] += w;
-                            for (int c = 0; c < 3; ++c)
-                                value_sum[c][out_row + x] += w * filtered.radiance[c][qrow + x];
+                            const float d2 = patch_d[x] / patch_n[x];
+                            for (size_t s = 0; s < strengths; ++s) {
+                                // min(exp(-a), exp(-b)) = exp(-max(a, b)): one exponential.
+                                const float a =
+                                    std::max(d2 * inv_scale2[s], df2 * inv_feature_scale2[s]);
+                                if (!(a < kNegligible))
+                                    continue;  // weight < 1e-9 (and no slow underflowing exp)
+                                const float w = std::exp(-std::max(0.0f, a));
+                                const size_t o = s * band_pixels + out_row + x;
+                                weight_sum[o] += w;
+                                for (int c = 0; c < 3; ++c)
+                                    value_sum[c][o] += w * filtered.radiance[c][qrow + x];
+                            }
                         }
                     }
                 }
             }
-            for (int y = y0; y < y1; ++y) {
-                for (int x = 0; x < width; ++x) {
-                    const size_t p = static_cast<size_t>(y) * width + x;
-                    const size_t i = static_cast<size_t>(y - y0) * width + x;
-                    for (int c = 0; c < 3; ++c) {
+            for (size_t s = 0; s < strengths; ++s) {
+                for (int y = y0; y < y1; ++y) {
+                    for (int x = 0; x < width; ++x) {
+                        const size_t p = static_cast<size_t>(y) * width + x;
+                        const size_t i = s * band_pixels + static_cast<size_t>(y - y0) * width + x;
                         // weight_sum >= 1 for a valid pixel (its own weight is exp(0) = 1).
-                        out[c][p] = valid[p] != 0 ? value_sum[c][i] / weight_sum[i]
-                                                  : filtered.radiance[c][p];
+                        for (int c = 0; c < 3; ++c) {
+                            out[s].rgb[c][p] = valid[p] != 0 ? value_sum[c][i] / weight_sum[i]
+                                                             : filtered.radiance[c][p];
+                        }
+                        out[s].weight_sum[p] = valid[p] != 0 ? weight_sum[i] : 1.0f;
                     }
                 }
             }
@@ -162,9 +186,9 @@ void cross_filter(const HalfImage& guide, const HalfImage& filtered,
     });
 }
 
-DenoisedBeauty denoise_beauty(const HalfBuffers& halves, const DenoiseSettings& settings) {
-    const int width = halves.width(), height = halves.height();
-    const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+std::vector<unsigned char> valid_pixels(const HalfBuffers& halves) {
+    const size_t pixels =
+        static_cast<size_t>(halves.width()) * static_cast<size_t>(halves.height());
     const HalfImage& a = halves.half(0);
     const HalfImage& b = halves.half(1);
     std::vector<unsigned char> valid(pixels, 0);
@@ -177,6 +201,26 @@ DenoisedBeauty denoise_beauty(const HalfBuffers& halves, const DenoiseSettings& 
         }
         valid[i] = ok ? 1 : 0;
     }
+    return valid;
+}
+
+void cross_filter(const HalfImage& guide, const HalfImage& filtered,
+                  const std::vector<unsigned char>& valid, int width, int height,
+                  const DenoiseSettings& settings, std::vector<float> out[3]) {
+    std::vector<CrossFiltered> one;
+    cross_filter_strengths(guide, filtered, valid, width, height, settings, {StrengthScale{}}, one);
+    for (int c = 0; c < 3; ++c)
+        out[c] = std::move(one[0].rgb[c]);
+}
+
+DenoisedBeauty denoise_beauty(const HalfBuffers& halves, const DenoiseSettings& settings) {
+    const int width = halves.width(), height = halves.height();
+    const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+    const HalfImage& a = halves.half(0);
+    const HalfImage& b = halves.half(1);
+    const std::vector<unsigned char> valid = valid_pixels(halves);
+    if (settings.select)
+        return select_strength(halves, valid, settings);
     std::vector<float> filtered_a[3], filtered_b[3];
     cross_filter(b, a, valid, width, height, settings, filtered_a);
     cross_filter(a, b, valid, width, height, settings, filtered_b);

@@ -48,6 +48,34 @@ struct DenoisedBeauty {
     std::vector<float> rgb[3];
 };
 
+/// One half cross-filtered at one strength: the filtered beauty (cd/m², 3 planes) and, per
+/// pixel, the sum of its weights. The pixel's own weight is 1 and the weights depend on the
+/// guide half only, so 1 / weight_sum = dA'_p / dA_p, the self-influence SURE needs
+/// (render/denoise/sure_selection.h); 1 where the pixel is not valid (left as it is).
+struct CrossFiltered {
+    std::vector<float> rgb[3];
+    std::vector<float> weight_sum;
+};
+
+/// Pixels the filter may filter and borrow from: both halves hold >= 2 samples and finite
+/// means and variances (1), else 0.
+std::vector<unsigned char> valid_pixels(const HalfBuffers& halves);
+
+/// A filter strength as multiples of settings.k and settings.k_feature.
+struct StrengthScale {
+    float k = 1.0f;          ///< colour strength k * this, > 0
+    float k_feature = 1.0f;  ///< feature strength k_feature * this, > 0
+};
+
+/// cross_filter at several strengths in one pass: the patch distances are computed once and
+/// divided by scales[i].k² (exact up to the epsilon of eq. 6), the feature's by
+/// scales[i].k_feature². out[i] is bit-identical to cross_filter's when scales[i] is {1, 1}.
+void cross_filter_strengths(const HalfImage& guide, const HalfImage& filtered,
+                            const std::vector<unsigned char>& valid, int width, int height,
+                            const DenoiseSettings& settings,
+                            const std::vector<StrengthScale>& scales,
+                            std::vector<CrossFiltered>& out);
+
 /// Half `filtered` filtered with weights computed on half `guide` (cd/m²; see the header),
 /// into `out` (3 planes of width * height). `valid[i]` != 0 for pixels that may be filtered
 /// and borrowed from. Runs on the calling thread's TBB arena; same result for any thread count.
@@ -57,7 +85,8 @@ void cross_filter(const HalfImage& guide, const HalfImage& filtered,
 
 /// The denoised beauty of both halves: A filtered with B's weights and B with A's, averaged
 /// with their sample counts as weights (cd/m²). Pixels without two valid halves keep their
-/// sample mean.
+/// sample mean. With settings.select, the strength is chosen per pixel by the estimated MSE
+/// (render/denoise/sure_selection.h).
 DenoisedBeauty denoise_beauty(const HalfBuffers& halves, const DenoiseSettings& settings);
 
 }  // namespace kasumi

@@ -15,6 +15,8 @@ expect_exit 3 "/film/denoise" -- render "$scene" "${tiny[@]}" -o "$work/x.exr" -
 expect_exit 3 "/film/denoise/radius" -- render "$scene" "${tiny[@]}" -o "$work/x.exr" \
   --set '/film/denoise={"radius": 0}'
 expect_exit 3 "/film/denoise" -- check "$scene" -q --set /film/denoise=7
+expect_exit 3 "/film/denoise/select" -- render "$scene" "${tiny[@]}" -o "$work/x.exr" \
+  --set '/film/denoise={"select": 2}'
 
 expect_exit 0 "" -- render "$scene" "${tiny[@]}" -o "$work/on.exr" --set '/film/denoise="nlm"'
 expect_exit 0 "" -- render "$scene" "${tiny[@]}" -o "$work/off.exr"
@@ -30,6 +32,13 @@ esac
 
 expect_exit 0 "" -- plan "$scene" --set '/film/denoise="nlm"'
 grep -qE "run +denoise: non-local means" "$work/stdout" || fail "plan: $(cat "$work/stdout")"
+expect_exit 0 "" -- plan "$scene" --set '/film/denoise={"select": true}'
+grep -qE "run +denoise: .*select: .*SURE" "$work/stdout" || fail "plan: $(cat "$work/stdout")"
+expect_exit 0 "" -- render "$scene" "${tiny[@]}" -o "$work/sel.exr" --set '/film/denoise={"select": true}'
+case "$(header "$work/sel.exr" attr:kasumi/denoise)" in
+  *select*) ;;
+  *) fail "metadata does not name the selection: $(header "$work/sel.exr" attr:kasumi/denoise)" ;;
+esac
 expect_exit 0 "" -- plan "$scene"
 grep -qE "denoise: film.denoise is \"off\"" "$work/stdout" || fail "plan: $(cat "$work/stdout")"
 finish denoise_cli

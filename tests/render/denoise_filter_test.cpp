@@ -1,8 +1,8 @@
 // The non-local-means filter (render/denoise/nlm_filter.h) on synthetic half buffers whose
 // expectation is known: a constant image stays unbiased while its variance falls, and next to
 // a step edge the bias stays within the stated bound and shrinks like the standard error.
-#include "core/rng.h"
 #include "render/denoise/nlm_filter.h"
+#include "tests/render/denoise_synthetic.h"
 #include "tests/sample_mean.h"
 
 #include <gtest/gtest.h>
@@ -15,39 +15,12 @@
 namespace kasumi {
 namespace {
 
-constexpr int kSize = 24;  // image width and height, pixels
-constexpr int kCentre = kSize / 2;
-
-/// Half buffers of a kSize² image whose pixel (x, y) takes `n` samples mean(x) + noise(rng):
-/// `draw(x, rng)` returns one sample of the beauty's channels (all three equal).
-HalfBuffers synthetic(uint64_t seed, int n, const std::function<float(int, Pcg32&)>& draw) {
-    HalfBuffers halves(kSize, kSize);
-    for (int y = 0; y < kSize; ++y) {
-        for (int x = 0; x < kSize; ++x) {
-            Pcg32 rng(seed * 1000003u + static_cast<uint64_t>(y * kSize + x), 0xde5015e);
-            HalfSums sums;
-            for (int s = 0; s < n; ++s) {
-                PixelSample sample;
-                sample.radiance = Rgb(draw(x, rng));
-                sample.transmittance = Rgb(0.5f);
-                sums.add(s, sample);
-            }
-            halves.set_pixel(x, y, sums, n);
-        }
-    }
-    return halves;
-}
-
-/// Exponential samples of mean 1 (relative standard deviation 1: a cloud pixel's skew).
-float exponential(Pcg32& rng) {
-    return static_cast<float>(-std::log(1.0 - static_cast<double>(rng.next_float())));
-}
-
-float gaussian(Pcg32& rng) {
-    const double u1 = 1.0 - static_cast<double>(rng.next_float());
-    const double u2 = rng.next_float();
-    return static_cast<float>(std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2));
-}
+using denoise_test::exponential;
+using denoise_test::gaussian;
+using denoise_test::kCentre;
+using denoise_test::kSize;
+using denoise_test::straight_edge_bound;
+using denoise_test::synthetic;
 
 /// The raw and denoised value of pixel (x, kCentre) over `trials` independent images.
 struct Trials {
@@ -100,10 +73,7 @@ MeanAndError edge_bias(int n, int trials) {
 // the standard error of a half's mean, and at least halves when the samples quadruple
 // (consistency). 300 images each: false failure ~1e-4.
 TEST(NlmFilter, EdgeBiasBoundedAndShrinksWithSamples) {
-    const DenoiseSettings s;
-    const auto bound = [&](int n) {
-        return 0.61 * s.k * std::sqrt(2.0 * s.patch + 1.0) / std::sqrt(n / 2.0);
-    };
+    const auto bound = [](int n) { return straight_edge_bound(DenoiseSettings{}, n); };
     const MeanAndError b16 = edge_bias(16, 300);
     const MeanAndError b64 = edge_bias(64, 300);
     std::printf("edge bias: 16 spp %.4f +- %.4f (bound %.4f), 64 spp %.4f +- %.4f (bound %.4f)\n",
