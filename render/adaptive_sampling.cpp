@@ -39,6 +39,12 @@ std::vector<int> neighbourhood_sample_counts(const std::vector<PixelConvergence>
     std::vector<int> counts(pilot.size(), criterion.max_spp);
     if (criterion.min_spp >= criterion.max_spp)
         return counts;  // nothing left to decide (and a 1-sample pilot has no variance)
+    // Each pilot's mean and variance once (a pixel is the neighbour of up to (2r + 1)² - 1).
+    std::vector<double> means(pilot.size()), variances(pilot.size());
+    for (size_t i = 0; i < pilot.size(); ++i) {
+        means[i] = pilot[i].mean();
+        variances[i] = pilot[i].variance();
+    }
     const int r = criterion.window;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -48,9 +54,9 @@ std::vector<int> neighbourhood_sample_counts(const std::vector<PixelConvergence>
                 for (int u = std::max(0, x - r); u <= std::min(width - 1, x + r); ++u) {
                     if (u == x && v == y)
                         continue;  // left out: the count must not read the pixel's own samples
-                    const PixelConvergence& p = pilot[static_cast<size_t>(v) * width + u];
-                    sum_mean += p.mean();
-                    sum_variance += p.variance();
+                    const size_t q = static_cast<size_t>(v) * width + u;
+                    sum_mean += means[q];
+                    sum_variance += variances[q];
                     ++neighbours;
                 }
             if (neighbours == 0)

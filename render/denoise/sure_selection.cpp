@@ -21,21 +21,29 @@ float candidate_value(const HalfBuffers& halves, const std::vector<CrossFiltered
            (na + nb);
 }
 
-}  // namespace
-
-const std::vector<StrengthScale>& selection_strengths() {
-    // The plain filter, then twice and four times as tolerant of colour and feature differences:
-    // where the filter at k leaves variance (the silhouette, where few neighbours look alike),
-    // a stronger one may have the lower error (docs/denoising.md).
-    static const std::vector<StrengthScale> strengths = {{1.0f, 1.0f}, {2.0f, 2.0f}, {4.0f, 4.0f}};
-    return strengths;
+/// Every candidate's output (candidate_value) as planes, computed once.
+std::vector<DenoisedBeauty> candidate_outputs(const HalfBuffers& halves,
+                                              const std::vector<CrossFiltered>& filtered_a,
+                                              const std::vector<CrossFiltered>& filtered_b) {
+    const size_t pixels = static_cast<size_t>(halves.width()) * halves.height();
+    std::vector<DenoisedBeauty> outputs(filtered_a.size() + 1);
+    for (size_t i = 0; i < outputs.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            outputs[i].rgb[c].resize(pixels);
+            for (size_t p = 0; p < pixels; ++p)
+                outputs[i].rgb[c][p] = candidate_value(halves, filtered_a, filtered_b, i, c, p);
+        }
+    return outputs;
 }
 
-std::vector<std::vector<float>> estimate_candidate_mse(
-    const HalfBuffers& halves, const std::vector<unsigned char>& valid,
-    const std::vector<CrossFiltered>& filtered_a, const std::vector<CrossFiltered>& filtered_b) {
+/// estimate_candidate_mse from the candidates' outputs (candidate_outputs).
+std::vector<std::vector<float>> candidate_mse(const HalfBuffers& halves,
+                                              const std::vector<unsigned char>& valid,
+                                              const std::vector<CrossFiltered>& filtered_a,
+                                              const std::vector<CrossFiltered>& filtered_b,
+                                              const std::vector<DenoisedBeauty>& outputs) {
     const size_t pixels = valid.size();
-    const size_t candidates = filtered_a.size() + 1;
+    const size_t candidates = outputs.size();
     const HalfImage& a = halves.half(0);
     const HalfImage& b = halves.half(1);
     std::vector<std::vector<float>> mse(candidates, std::vector<float>(pixels, 0.0f));
@@ -51,7 +59,7 @@ std::vector<std::vector<float>> estimate_candidate_mse(
             for (int c = 0; c < 3; ++c) {
                 const double va = a.radiance_var[c][p], vb = b.radiance_var[c][p];
                 const double raw = alpha * a.radiance[c][p] + beta * b.radiance[c][p];
-                const double f = candidate_value(halves, filtered_a, filtered_b, i, c, p);
+                const double f = outputs[i].rgb[c][p];
                 const double var_raw = alpha * alpha * va + beta * beta * vb;
                 const double cov = alpha * alpha * va / wa + beta * beta * vb / wb;
                 e += (f - raw) * (f - raw) - var_raw + 2.0 * cov;
@@ -60,6 +68,23 @@ std::vector<std::vector<float>> estimate_candidate_mse(
         }
     }
     return mse;
+}
+
+}  // namespace
+
+const std::vector<StrengthScale>& selection_strengths() {
+    // The plain filter, then twice and four times as tolerant of colour and feature differences:
+    // where the filter at k leaves variance (the silhouette, where few neighbours look alike),
+    // a stronger one may have the lower error (docs/denoising.md).
+    static const std::vector<StrengthScale> strengths = {{1.0f, 1.0f}, {2.0f, 2.0f}, {4.0f, 4.0f}};
+    return strengths;
+}
+
+std::vector<std::vector<float>> estimate_candidate_mse(
+    const HalfBuffers& halves, const std::vector<unsigned char>& valid,
+    const std::vector<CrossFiltered>& filtered_a, const std::vector<CrossFiltered>& filtered_b) {
+    return candidate_mse(halves, valid, filtered_a, filtered_b,
+                         candidate_outputs(halves, filtered_a, filtered_b));
 }
 
 DenoisedBeauty select_strength(const HalfBuffers& halves, const std::vector<unsigned char>& valid,
@@ -72,8 +97,9 @@ DenoisedBeauty select_strength(const HalfBuffers& halves, const std::vector<unsi
                            filtered_a);
     cross_filter_strengths(halves.half(0), halves.half(1), valid, width, height, settings, scales,
                            filtered_b);
+    const std::vector<DenoisedBeauty> outputs = candidate_outputs(halves, filtered_a, filtered_b);
     const std::vector<std::vector<float>> mse =
-        estimate_candidate_mse(halves, valid, filtered_a, filtered_b);
+        candidate_mse(halves, valid, filtered_a, filtered_b, outputs);
     const size_t candidates = mse.size();
     const size_t strongest = candidates - 1;  // its output is the normaliser's mean
 
@@ -87,7 +113,7 @@ DenoisedBeauty select_strength(const HalfBuffers& halves, const std::vector<unsi
         if (valid[p] == 0)
             continue;
         for (int c = 0; c < 3; ++c)
-            mean += candidate_value(halves, filtered_a, filtered_b, 0, c, p) / 3.0;
+            mean += outputs[0].rgb[c][p] / 3.0;
         ++count;
     }
     mean = count > 0 ? mean / static_cast<double>(count) : 0.0;
@@ -98,7 +124,7 @@ DenoisedBeauty select_strength(const HalfBuffers& halves, const std::vector<unsi
             continue;
         double norm = 3.0 * eps;
         for (int c = 0; c < 3; ++c) {
-            const double f = candidate_value(halves, filtered_a, filtered_b, strongest, c, p);
+            const double f = outputs[strongest].rgb[c][p];
             norm += f * f;
         }
         for (size_t i = 0; i < candidates; ++i)
@@ -139,7 +165,7 @@ DenoisedBeauty select_strength(const HalfBuffers& halves, const std::vector<unsi
             for (int x = 0; x < width; ++x) {
                 const size_t p = static_cast<size_t>(y) * width + x;
                 if (valid[p] == 0) {
-                    beauty.rgb[c][p] = candidate_value(halves, filtered_a, filtered_b, 0, c, p);
+                    beauty.rgb[c][p] = outputs[0].rgb[c][p];
                     continue;
                 }
                 double sum = 0.0, n = 0.0;
@@ -148,7 +174,7 @@ DenoisedBeauty select_strength(const HalfBuffers& halves, const std::vector<unsi
                         const size_t q = static_cast<size_t>(qy) * width + qx;
                         if (valid[q] == 0)
                             continue;
-                        sum += candidate_value(halves, filtered_a, filtered_b, choice[q], c, p);
+                        sum += outputs[choice[q]].rgb[c][p];
                         n += 1.0;
                     }
                 }
