@@ -186,6 +186,13 @@ class RayMediaQuery {
             m_seed = stochastic_seed(ray);
     }
 
+    /// The ray this query was made for.
+    const Ray& ray() const { return m_ray; }
+    /// Grid medium k's ray in its index space, o + t d with the query's t: the origin (index
+    /// units) and the direction (index units per unit of t). Unset for other media.
+    const Vec3& origin_index(uint32_t k) const { return m_origin[k]; }
+    const Vec3& direction_index(uint32_t k) const { return m_direction[k]; }
+
     /// Density of grid medium k at distance t (0 for a homogeneous medium).
     float density(uint32_t k, float t) const {
         const MediumSet::FastMedium& m = m_media.fast(k);

@@ -68,14 +68,14 @@ class Collisions {
 };
 
 /// Calls at(t, segment, k, mu) at each tentative collision of the Poisson process whose rate is
-/// each segment's scalar majorant mu = max_c sigma_max along `ray` (the free-flight samplers'
+/// each segment's scalar majorant mu = max_c sigma_max along query.ray() (the free-flight samplers'
 /// walk), k the coefficients there (each lookup counted), while at returns true. Returns false
 /// if at stopped the walk, true if the walk left the ray's end.
 template <class At>
-bool walk_tentative_collisions(const MediumSet& media, const RayMediaQuery& query, const Ray& ray,
-                               Pcg32& rng, VolumeCounters& counters, At&& at) {
+bool walk_tentative_collisions(const MediumSet& media, const RayMediaQuery& query, Pcg32& rng,
+                               VolumeCounters& counters, At&& at) {
     Collisions collisions(rng);
-    return walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+    return walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
         const float mu = max_component(s.sigma_max);
         if (!(mu > 0.0f))
             return true;

@@ -37,11 +37,11 @@ Rgb march(const MediumSet& media, const Ray& ray, float step_m,
 }
 
 /// Delta tracking of one channel: 1 if the walk crosses without a real collision, else 0.
-float delta_channel(const MediumSet& media, const RayMediaQuery& query, const Ray& ray, int c,
-                    Pcg32& rng, VolumeCounters& counters) {
+float delta_channel(const MediumSet& media, const RayMediaQuery& query, int c, Pcg32& rng,
+                    VolumeCounters& counters) {
     Collisions collisions(rng);
     const bool crossed =
-        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+        walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
             const float mu = s.sigma_max[c];
             if (!(mu > 0.0f))
                 return true;
@@ -56,11 +56,11 @@ float delta_channel(const MediumSet& media, const RayMediaQuery& query, const Ra
 
 Rgb delta(const MediumSet& media, const Ray& ray, Pcg32& rng, VolumeCounters& counters) {
     const RayMediaQuery query(media, ray);
-    const float r = delta_channel(media, query, ray, 0, rng, counters);
+    const float r = delta_channel(media, query, 0, rng, counters);
     if (media.grey_extinction())
         return Rgb(r);
-    return Rgb(r, delta_channel(media, query, ray, 1, rng, counters),
-               delta_channel(media, query, ray, 2, rng, counters));
+    return Rgb(r, delta_channel(media, query, 1, rng, counters),
+               delta_channel(media, query, 2, rng, counters));
 }
 
 /// Ratio tracking (Novák et al. 2014, "Residual Ratio Tracking for Estimating Attenuation in
@@ -74,7 +74,7 @@ Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
     glm::dvec3 control_depth(0.0);
     Collisions collisions(rng);
     const bool alive =
-        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+        walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
             const Rgb control = residual ? s.sigma_min : Rgb(0.0f);
             if (residual) {
                 bool gone = true;
@@ -198,7 +198,7 @@ TrackedWalk track_collisions(const MediumSet& media, const Ray& ray, const Rgb* 
     glm::dvec3 control_depth(0.0);  // integral of the minorant before the current segment
     Collisions collisions(rng);
     const bool alive =
-        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+        walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
             const Rgb control = s.sigma_min;
             const float mu = max_component(s.sigma_max);
             const glm::dvec3 depth_before = control_depth;
@@ -261,7 +261,7 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
     const bool emits = media.emits();
     FreeFlight flight;
     walk_tentative_collisions(
-        media, query, ray, rng, counters,
+        media, query, rng, counters,
         [&](float t, const MajorantSegment& s, const PointCoefficients& k, float mu) {
             if (emits)
                 flight.emitted +=

@@ -9,6 +9,7 @@
 #include "core/math.h"
 #include "core/zeroed_allocator.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <new>
@@ -307,33 +308,41 @@ bool DensityGrid::walk(const Vec3& o_index, const Vec3& d_index, float t0, float
     IVec3 cell = glm::clamp(IVec3(glm::floor(p + d * ta)), IVec3(0), m_bricks - IVec3(1));
     IVec3 step(0);
     Vec3 t_next(kInfinity), t_delta(0.0f);
+    // The brick slot follows the cell: a step along axis a moves it by +-stride[a].
+    const ptrdiff_t stride[3] = {1, m_bricks.x, static_cast<ptrdiff_t>(m_bricks.x) * m_bricks.y};
+    ptrdiff_t slot_step[3] = {0, 0, 0};
     for (int a = 0; a < 3; ++a) {
         if (d[a] > 0.0f) {
             step[a] = 1;
+            slot_step[a] = stride[a];
             t_next[a] = (static_cast<float>(cell[a] + 1) - p[a]) / d[a];
             t_delta[a] = 1.0f / d[a];
         } else if (d[a] < 0.0f) {
             step[a] = -1;
+            slot_step[a] = -stride[a];
             t_next[a] = (static_cast<float>(cell[a]) - p[a]) / d[a];
             t_delta[a] = -1.0f / d[a];
         }
     }
+    ptrdiff_t slot = static_cast<ptrdiff_t>(brick_slot(cell));
     for (float t = ta; t < tb;) {
         const int axis =
             t_next.x <= t_next.y ? (t_next.x <= t_next.z ? 0 : 2) : (t_next.y <= t_next.z ? 1 : 2);
         const float t_exit = std::min(t_next[axis], tb);
-        const size_t slot = brick_slot(cell);
-        const int32_t storage = m_brick_index[slot];
+        const int32_t storage = m_brick_index[static_cast<size_t>(slot)];
         if (storage >= 0 && t_exit > t) {
             const BrickRef brick{&m_voxels[static_cast<size_t>(storage) * kBrickVoxels],
                                  m_origin_f + Vec3(cell * kBrick)};
-            if (!visit(BrickSpan{t, t_exit, m_brick_max[slot], m_brick_min[slot]}, brick))
+            if (!visit(BrickSpan{t, t_exit, m_brick_max[static_cast<size_t>(slot)],
+                                 m_brick_min[static_cast<size_t>(slot)]},
+                       brick))
                 return false;
         }
         t = std::max(t, t_exit);
         cell[axis] += step[axis];
         if (cell[axis] < 0 || cell[axis] >= m_bricks[axis])
             break;
+        slot += slot_step[axis];
         t_next[axis] += t_delta[axis];
     }
     return true;
