@@ -139,8 +139,11 @@ bool walk_majorants(const MediumSet& media, const RayMediaQuery& query, Visit&& 
 
 /// sigma_t and sigma_s at distance t on segment s of a walk: from the brick the walk named (one
 /// grid medium: no brick-table read), else summed over the segment's media.
-inline PointCoefficients coefficients_at(const MediumSet& media, const RayMediaQuery& query,
-                                         const MajorantSegment& s, const BrickRef* brick, float t) {
+__attribute__((always_inline)) inline PointCoefficients coefficients_at(const MediumSet& media,
+                                                                        const RayMediaQuery& query,
+                                                                        const MajorantSegment& s,
+                                                                        const BrickRef* brick,
+                                                                        float t) {
     if (brick != nullptr) {
         const MediumSet::FastMedium& m = media.fast(0);
         const float d = query.density_in(0, *brick, t);
