@@ -305,7 +305,8 @@ bool DensityGrid::walk(const Vec3& o_index, const Vec3& d_index, float t0, float
     }
     if (!(tb > ta))
         return true;
-    IVec3 cell = glm::clamp(IVec3(glm::floor(p + d * ta)), IVec3(0), m_bricks - IVec3(1));
+    // Truncation is the floor for q >= 0, and both clamp to 0 below.
+    IVec3 cell = glm::clamp(IVec3(p + d * ta), IVec3(0), m_bricks - IVec3(1));
     IVec3 step(0);
     Vec3 t_next(kInfinity), t_delta(0.0f);
     // The brick slot follows the cell: a step along axis a moves it by +-stride[a].
@@ -325,10 +326,20 @@ bool DensityGrid::walk(const Vec3& o_index, const Vec3& d_index, float t0, float
         }
     }
     ptrdiff_t slot = static_cast<ptrdiff_t>(brick_slot(cell));
+    // One step along an axis: false when it leaves the grid. Called with each axis's own
+    // members (no indexing by a run-time axis), so the walk's state stays in registers.
+    const auto advance = [&slot](int& c, int s, int cells, ptrdiff_t ds, float& tn, float dt) {
+        c += s;
+        if (c < 0 || c >= cells)
+            return false;
+        slot += ds;
+        tn += dt;
+        return true;
+    };
     for (float t = ta; t < tb;) {
         const int axis =
             t_next.x <= t_next.y ? (t_next.x <= t_next.z ? 0 : 2) : (t_next.y <= t_next.z ? 1 : 2);
-        const float t_exit = std::min(t_next[axis], tb);
+        const float t_exit = std::min(axis == 0 ? t_next.x : (axis == 1 ? t_next.y : t_next.z), tb);
         const int32_t storage = m_brick_index[static_cast<size_t>(slot)];
         if (storage >= 0 && t_exit > t) {
             const BrickRef brick{&m_voxels[static_cast<size_t>(storage) * kBrickVoxels],
@@ -339,11 +350,12 @@ bool DensityGrid::walk(const Vec3& o_index, const Vec3& d_index, float t0, float
                 return false;
         }
         t = std::max(t, t_exit);
-        cell[axis] += step[axis];
-        if (cell[axis] < 0 || cell[axis] >= m_bricks[axis])
+        const bool inside =
+            axis == 0   ? advance(cell.x, step.x, m_bricks.x, slot_step[0], t_next.x, t_delta.x)
+            : axis == 1 ? advance(cell.y, step.y, m_bricks.y, slot_step[1], t_next.y, t_delta.y)
+                        : advance(cell.z, step.z, m_bricks.z, slot_step[2], t_next.z, t_delta.z);
+        if (!inside)
             break;
-        slot += slot_step[axis];
-        t_next[axis] += t_delta[axis];
     }
     return true;
 }
