@@ -74,7 +74,7 @@ class MediumSet {
     /// True if every medium's extinction is the same in all channels (trackers run once).
     bool grey_extinction() const { return m_grey_extinction; }
     /// Shortest voxel edge of the grid media, metres (kInfinity without grids).
-    float smallest_voxel_m() const;
+    float smallest_voxel_m() const { return m_smallest_voxel_m; }
 
     /// Optical depth tau along the ray over [t_min, t_max], exact; homogeneous media and height
     /// fog only (grids are left out: use the transmittance estimators for them).
@@ -164,6 +164,7 @@ class MediumSet {
     bool m_closed_form = true;
     bool m_grey_extinction = true;
     bool m_emits = false;
+    float m_smallest_voxel_m = kInfinity;
 };
 
 /// Point queries of a MediumSet along one ray by distance t: each grid's index-space ray is
