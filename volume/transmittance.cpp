@@ -70,6 +70,11 @@ Rgb delta(const MediumSet& media, const Ray& ray, Pcg32& rng, VolumeCounters& co
 Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
           VolumeCounters& counters) {
     const RayMediaQuery query(media, ray);
+    // Grey extinction: the three control depths are the same numbers, so one exp serves all.
+    const bool grey = media.grey_extinction();
+    const auto control_transmittance = [grey](const glm::dvec3& depth) {
+        return grey ? Rgb(static_cast<float>(std::exp(-depth.x))) : Rgb(glm::exp(-depth));
+    };
     Rgb weight(1.0f);
     glm::dvec3 control_depth(0.0);
     Collisions collisions(rng);
@@ -99,7 +104,7 @@ Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
                 // sigma - control <= mu up to rounding; the clamp only guards rounding.
                 weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
                 if (t_control.r < 0.0f)
-                    t_control = Rgb(glm::exp(-control_depth));
+                    t_control = control_transmittance(control_depth);
                 // Russian roulette once the estimate is small: unbiased, bounds the walk length.
                 const float w = max_component(weight * t_control);
                 if (w < kRouletteWeight) {
@@ -113,7 +118,7 @@ Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
         });
     if (!alive)
         return Rgb(0.0f);
-    return weight * Rgb(glm::exp(-control_depth));
+    return weight * control_transmittance(control_depth);
 }
 
 }  // namespace
