@@ -78,6 +78,21 @@ class Collisions {
         }
     }
 
+    /// walk's first step on its own: true, the segment's depth consumed, when [t0, t1) at rate
+    /// mu holds no collision (then walk(t0, t1, mu, at) would have called nothing and done the
+    /// same); false, nothing changed but the first variate's draw, when it holds one (then call
+    /// walk). Lets a caller keep the collision loop out of line and the common empty segment
+    /// in line.
+    bool passes(float t0, float t1, float mu) {
+        if (m_left < 0.0f)
+            m_left = unit_exponential(m_rng);
+        const float depth = std::max(t1 - t0, 0.0f) * mu;
+        if (m_left < depth)
+            return false;
+        m_left -= depth;
+        return true;
+    }
+
   private:
     Pcg32& m_rng;
     float m_left = -1.0f;  ///< optical depth (rate-1 units) left to the next collision
@@ -91,15 +106,20 @@ template <class At>
 bool walk_tentative_collisions(const MediumSet& media, const RayMediaQuery& query, Pcg32& rng,
                                VolumeCounters& counters, At&& at) {
     Collisions collisions(rng);
-    return walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
-        const float mu = max_component(s.sigma_max);
-        if (!(mu > 0.0f))
-            return true;
+    // The segments with collisions, out of line (most segments have none).
+    const auto collide = [&](const MajorantSegment& s, const BrickRef* brick, float mu)
+        __attribute__((noinline)) {
         return collisions.walk(s.t0, s.t1, mu, [&](float t) {
             const PointCoefficients k = coefficients_at(media, query, s, brick, t);
             ++counters.density_lookups;
             return at(t, s, k, mu);
         });
+    };
+    return walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
+        const float mu = max_component(s.sigma_max);
+        if (!(mu > 0.0f) || collisions.passes(s.t0, s.t1, mu))
+            return true;
+        return collide(s, brick, mu);
     });
 }
 
