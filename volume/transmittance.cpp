@@ -78,6 +78,30 @@ Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
     Rgb weight(1.0f);
     glm::dvec3 control_depth(0.0);
     Collisions collisions(rng);
+    // A segment's collisions, out of line: most segments have none (Collisions::passes).
+    const auto collide = [&](const MajorantSegment& s, const BrickRef* brick, const Rgb& control,
+                             float mu) __attribute__((noinline)) {
+        // The control's transmittance so far (exact) scales the roulette threshold; taken
+        // once per segment, at its first collision.
+        Rgb t_control(-1.0f);
+        return collisions.walk(s.t0, s.t1, mu, [&](float t) {
+            const Rgb sigma = coefficients_at(media, query, s, brick, t).sigma_t;
+            ++counters.density_lookups;
+            // sigma - control <= mu up to rounding; the clamp only guards rounding.
+            weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
+            if (t_control.r < 0.0f)
+                t_control = control_transmittance(control_depth);
+            // Russian roulette once the estimate is small: unbiased, bounds the walk length.
+            const float w = max_component(weight * t_control);
+            if (w < kRouletteWeight) {
+                const float survive = w / kRouletteWeight;
+                if (!(rng.next_float() < survive))
+                    return false;
+                weight /= survive;
+            }
+            return true;
+        });
+    };
     const bool alive =
         walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
             const Rgb control = residual ? s.sigma_min : Rgb(0.0f);
@@ -93,28 +117,9 @@ Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
                     return false;
             }
             const float mu = max_component(s.sigma_max - control);
-            if (!(mu > 0.0f))
+            if (!(mu > 0.0f) || collisions.passes(s.t0, s.t1, mu))
                 return true;
-            // The control's transmittance so far (exact) scales the roulette threshold; taken
-            // once per segment, at its first collision.
-            Rgb t_control(-1.0f);
-            return collisions.walk(s.t0, s.t1, mu, [&](float t) {
-                const Rgb sigma = coefficients_at(media, query, s, brick, t).sigma_t;
-                ++counters.density_lookups;
-                // sigma - control <= mu up to rounding; the clamp only guards rounding.
-                weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
-                if (t_control.r < 0.0f)
-                    t_control = control_transmittance(control_depth);
-                // Russian roulette once the estimate is small: unbiased, bounds the walk length.
-                const float w = max_component(weight * t_control);
-                if (w < kRouletteWeight) {
-                    const float survive = w / kRouletteWeight;
-                    if (!(rng.next_float() < survive))
-                        return false;
-                    weight /= survive;
-                }
-                return true;
-            });
+            return collide(s, brick, control, mu);
         });
     if (!alive)
         return Rgb(0.0f);
