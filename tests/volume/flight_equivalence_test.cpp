@@ -67,33 +67,28 @@ std::vector<Crossing> reference_crossings(const DensityGrid& grid, const Vec3& o
     const Vec3 d = dir * (1.0f / kBrick);
     const Vec3 n(bricks);
     float ta = t0, tb = t1;
+    IVec3 step(0);
+    Vec3 t_next(kInfinity), t_delta(0.0f);
     for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0f) {
-            if (!(p[a] >= 0.0f && p[a] < n[a]))
+        if (!(d[a] > 0.0f || d[a] < 0.0f)) {  // parallel to the slab: inside it or missing
+            if (p[a] < 0.0f || !(p[a] < n[a]))
                 return out;
             continue;
         }
         const float inv = 1.0f / d[a];
-        float near = (0.0f - p[a]) * inv, far = (n[a] - p[a]) * inv;
-        if (near > far)
-            std::swap(near, far);
-        ta = std::max(ta, near);
-        tb = std::min(tb, far);
+        const float enter = (0.0f - p[a]) * inv, leave = (n[a] - p[a]) * inv;
+        ta = std::max(ta, std::min(enter, leave));
+        tb = std::min(tb, std::max(leave, enter));
     }
     if (!(tb > ta))
         return out;
     IVec3 cell = glm::clamp(IVec3(glm::floor(p + d * ta)), IVec3(0), bricks - IVec3(1));
-    IVec3 step(0);
-    Vec3 t_next(kInfinity), t_delta(0.0f);
     for (int a = 0; a < 3; ++a) {
-        if (d[a] > 0.0f) {
-            step[a] = 1;
-            t_next[a] = (static_cast<float>(cell[a] + 1) - p[a]) / d[a];
-            t_delta[a] = 1.0f / d[a];
-        } else if (d[a] < 0.0f) {
-            step[a] = -1;
-            t_next[a] = (static_cast<float>(cell[a]) - p[a]) / d[a];
-            t_delta[a] = -1.0f / d[a];
+        if (d[a] > 0.0f || d[a] < 0.0f) {
+            const bool up = d[a] > 0.0f;
+            step[a] = up ? 1 : -1;
+            t_next[a] = (static_cast<float>(cell[a] + (up ? 1 : 0)) - p[a]) / d[a];
+            t_delta[a] = (up ? 1.0f : -1.0f) / d[a];
         }
     }
     for (float t = ta; t < tb;) {
