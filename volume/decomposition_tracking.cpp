@@ -46,7 +46,7 @@ FreeFlight sample_free_flight_decomposition(const MediumSet& media, const Ray& r
         flight.media_mask = s.media_mask;
         flight.k = k;
     };
-    walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+    walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
         const float mu = max_component(s.sigma_max);
         if (!(mu > 0.0f))
             return true;

@@ -70,38 +70,38 @@ bool walk_brick_cells(const BrickRef& brick, const Vec3& o, const Vec3& d, float
     return true;
 }
 
-/// Calls visit(const MajorantSegment& s, const BrickRef* brick) for each majorant segment of
-/// [ray.t_min, ray.t_max] in order until visit returns false (then returns false). `brick` is
-/// the grid brick holding s when the set is a single grid (RayMediaQuery::density_in reads it),
-/// else null (use RayMediaQuery::coefficients with s.media_mask). Not re-entrant per Visit type
-/// for sets other than a single grid (the segment list is thread_local).
+/// walk_majorants for a set that is the one grid medium `g`, whose index-space ray (o + t d, the
+/// transform of `ray`) the caller has computed: the grid's bricks in order, a dense brick cell
+/// by cell.
 template <class Visit>
-bool walk_majorants(const MediumSet& media, const Ray& ray, Visit&& visit) {
-    if (const MediumSet::FastMedium* g = media.single_grid()) {
-        if (g->grid->empty() || !(max_component(g->sigma_t) > 0.0f))
-            return true;
-        const auto span = g->bounds_world.clip(ray);
-        if (!span)
-            return true;
-        // The same expressions as RayMediaQuery's, so both see the same index-space ray.
-        const Vec3 o_index(g->world_to_index * Vec4(ray.origin, 1.0f));
-        const Vec3 d_index(g->world_to_index * Vec4(ray.direction, 0.0f));
-        const Rgb sigma_t = g->sigma_t;
-        return g->grid->walk(
-            o_index, d_index, span->first, span->second,
-            [&](const BrickSpan& b, const BrickRef& brick) {
-                const MajorantSegment s{b.t0, b.t1, sigma_t * b.density_max,
-                                        sigma_t * b.density_min, 1u};
-                if (!(max_component(s.sigma_max) * (b.t1 - b.t0) > kDenseBrickDepth))
-                    return visit(s, &brick);
-                return walk_brick_cells(
-                    brick, o_index, d_index, b.t0, b.t1, b.density_max, b.density_min,
-                    [&](float t0, float t1, float hi, float lo) {
-                        return visit(MajorantSegment{t0, t1, sigma_t * hi, sigma_t * lo, 1u},
-                                     &brick);
-                    });
-            });
-    }
+bool walk_grid_majorants(const MediumSet::FastMedium& g, const Ray& ray, const Vec3& o_index,
+                         const Vec3& d_index, Visit&& visit) {
+    if (g.grid->empty() || !(max_component(g.sigma_t) > 0.0f))
+        return true;
+    const auto span = g.bounds_world.clip(ray);
+    if (!span)
+        return true;
+    const Rgb sigma_t = g.sigma_t;
+    return g.grid->walk(
+        o_index, d_index, span->first, span->second,
+        [&](const BrickSpan& b, const BrickRef& brick) {
+            const MajorantSegment s{b.t0, b.t1, sigma_t * b.density_max, sigma_t * b.density_min,
+                                    1u};
+            if (!(max_component(s.sigma_max) * (b.t1 - b.t0) > kDenseBrickDepth))
+                return visit(s, &brick);
+            return walk_brick_cells(
+                brick, o_index, d_index, b.t0, b.t1, b.density_max, b.density_min,
+                [&](float t0, float t1, float hi, float lo) {
+                    return visit(MajorantSegment{t0, t1, sigma_t * hi, sigma_t * lo, 1u}, &brick);
+                });
+        });
+}
+
+/// The segments of a set other than a single grid (MediumSet::majorants, listed for the whole
+/// ray first), in order, until visit returns false. Not re-entrant per Visit type (the segment
+/// list is thread_local).
+template <class Visit>
+bool walk_listed_majorants(const MediumSet& media, const Ray& ray, Visit&& visit) {
     thread_local std::vector<MajorantSegment> segments;
     media.majorants(ray, segments);
     for (const MajorantSegment& s : segments) {
@@ -111,10 +111,39 @@ bool walk_majorants(const MediumSet& media, const Ray& ray, Visit&& visit) {
     return true;
 }
 
+/// Calls visit(const MajorantSegment& s, const BrickRef* brick) for each majorant segment of
+/// [ray.t_min, ray.t_max] in order until visit returns false (then returns false). `brick` is
+/// the grid brick holding s when the set is a single grid (RayMediaQuery::density_in reads it),
+/// else null (use RayMediaQuery::coefficients with s.media_mask). Not re-entrant per Visit type
+/// for sets other than a single grid (the segment list is thread_local).
+template <class Visit>
+bool walk_majorants(const MediumSet& media, const Ray& ray, Visit&& visit) {
+    if (const MediumSet::FastMedium* g = media.single_grid()) {
+        // The same expressions as RayMediaQuery's, so both see the same index-space ray.
+        const Vec3 o_index(g->world_to_index * Vec4(ray.origin, 1.0f));
+        const Vec3 d_index(g->world_to_index * Vec4(ray.direction, 0.0f));
+        return walk_grid_majorants(*g, ray, o_index, d_index, visit);
+    }
+    return walk_listed_majorants(media, ray, visit);
+}
+
+/// walk_majorants along query.ray(), reusing the index-space ray the query has computed (the
+/// same values: one transform per ray instead of two).
+template <class Visit>
+bool walk_majorants(const MediumSet& media, const RayMediaQuery& query, Visit&& visit) {
+    if (const MediumSet::FastMedium* g = media.single_grid())
+        return walk_grid_majorants(*g, query.ray(), query.origin_index(0), query.direction_index(0),
+                                   visit);
+    return walk_listed_majorants(media, query.ray(), visit);
+}
+
 /// sigma_t and sigma_s at distance t on segment s of a walk: from the brick the walk named (one
 /// grid medium: no brick-table read), else summed over the segment's media.
-inline PointCoefficients coefficients_at(const MediumSet& media, const RayMediaQuery& query,
-                                         const MajorantSegment& s, const BrickRef* brick, float t) {
+__attribute__((always_inline)) inline PointCoefficients coefficients_at(const MediumSet& media,
+                                                                        const RayMediaQuery& query,
+                                                                        const MajorantSegment& s,
+                                                                        const BrickRef* brick,
+                                                                        float t) {
     if (brick != nullptr) {
         const MediumSet::FastMedium& m = media.fast(0);
         const float d = query.density_in(0, *brick, t);

@@ -200,6 +200,7 @@ MediumSet::MediumSet(std::vector<Medium> media)
             f.sigma_t = h->sigma_t();
             f.sigma_s = h->sigma_s;
         } else if (const VdbMedium* v = std::get_if<VdbMedium>(&m.model)) {
+            m_smallest_voxel_m = std::min(m_smallest_voxel_m, v->voxel_size_m);
             f.grid = v->grid.get();
             f.world_to_index = v->world_to_index;
             f.sigma_t = v->sigma_t_per_density();
@@ -235,15 +236,6 @@ const LightTransmittanceCache* MediumSet::light_cache(size_t light_index,
 bool MediumSet::scatters() const {
     return std::any_of(m_media.begin(), m_media.end(),
                        [](const Medium& m) { return max_component(sigma_s_of(m)) > 0.0f; });
-}
-
-float MediumSet::smallest_voxel_m() const {
-    float size = kInfinity;
-    for (const Medium& m : m_media) {
-        if (const auto* v = std::get_if<VdbMedium>(&m.model))
-            size = std::min(size, v->voxel_size_m);
-    }
-    return size;
 }
 
 Rgb MediumSet::optical_depth(const Ray& ray) const {
@@ -426,10 +418,23 @@ MixtureSample MediumSet::sample_scattering(const Vec3& p, uint32_t mask, const V
                                            float u_pick, Vec2 u,
                                            const PointCoefficients* known) const {
     MixtureSample out;
+    const bool one = mask != 0 && (mask & (mask - 1)) == 0;
+    if (one && known != nullptr) {
+        // The general path below for one medium with known coefficients, without its tables
+        // (the pick always takes that medium; u_pick goes unused there too).
+        if (!(std::max(luminance(known->sigma_s), 0.0f) > 0.0f))
+            return out;
+        const PhaseSample ps = sample(phase_of(m_media[__builtin_ctz(mask)]), wo, u);
+        if (!(ps.pdf > 0.0f))
+            return out;
+        out.wi = ps.wi;
+        out.scattering = known->sigma_s * ps.value;
+        out.pdf = ps.pdf;
+        return out;
+    }
     Rgb sigma_s[kMaxMedia];
     float weight[kMaxMedia];
     float total = 0.0f;
-    const bool one = mask != 0 && (mask & (mask - 1)) == 0;
     for (uint32_t m = mask; m != 0; m &= m - 1) {
         const int k = __builtin_ctz(m);
         sigma_s[k] = one && known != nullptr ? known->sigma_s : sigma_s_at(m_media[k], p);

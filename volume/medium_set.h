@@ -74,7 +74,7 @@ class MediumSet {
     /// True if every medium's extinction is the same in all channels (trackers run once).
     bool grey_extinction() const { return m_grey_extinction; }
     /// Shortest voxel edge of the grid media, metres (kInfinity without grids).
-    float smallest_voxel_m() const;
+    float smallest_voxel_m() const { return m_smallest_voxel_m; }
 
     /// Optical depth tau along the ray over [t_min, t_max], exact; homogeneous media and height
     /// fog only (grids are left out: use the transmittance estimators for them).
@@ -164,6 +164,7 @@ class MediumSet {
     bool m_closed_form = true;
     bool m_grey_extinction = true;
     bool m_emits = false;
+    float m_smallest_voxel_m = kInfinity;
 };
 
 /// Point queries of a MediumSet along one ray by distance t: each grid's index-space ray is
@@ -185,6 +186,13 @@ class RayMediaQuery {
         if (m_stochastic)
             m_seed = stochastic_seed(ray);
     }
+
+    /// The ray this query was made for.
+    const Ray& ray() const { return m_ray; }
+    /// Grid medium k's ray in its index space, o + t d with the query's t: the origin (index
+    /// units) and the direction (index units per unit of t). Unset for other media.
+    const Vec3& origin_index(uint32_t k) const { return m_origin[k]; }
+    const Vec3& direction_index(uint32_t k) const { return m_direction[k]; }
 
     /// Density of grid medium k at distance t (0 for a homogeneous medium).
     float density(uint32_t k, float t) const {

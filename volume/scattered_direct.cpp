@@ -12,6 +12,11 @@ namespace {
 /// render.volume.nee_roulette: the smallest probability with which a shadow ray is traced.
 constexpr float kNeeSurvivalFloor = 0.1f;
 
+/// nee_survival for the largest phase value p (1/sr) among the media.
+float nee_survival_of_phase(float p) {
+    return std::min(1.0f, std::max(kNeeSurvivalFloor, 4.0f * kPi * p));
+}
+
 /// The probability with which next-event estimation at a scattering event traces its shadow
 /// ray (render.volume.nee_roulette): q = min(1, max(kNeeSurvivalFloor, p(mu) / p_iso)), p the
 /// largest phase value at cosine mu among the media in `mask` and p_iso = 1/(4 pi) the
@@ -25,7 +30,7 @@ float nee_survival(const MediumSet& media, uint32_t mask, float mu) {
     float p = 0.0f;
     for (uint32_t m = mask; m != 0; m &= m - 1)
         p = std::max(p, media.phase_value(static_cast<uint32_t>(__builtin_ctz(m)), mu));
-    return std::min(1.0f, std::max(kNeeSurvivalFloor, 4.0f * kPi * p));
+    return nee_survival_of_phase(p);
 }
 
 float mean(const Rgb& c) {
@@ -93,8 +98,17 @@ Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t ligh
     const bool one = media_mask != 0 && (media_mask & (media_mask - 1)) == 0;
     const float mu = scattering_cosine(wo, in.wi);
     Rgb f;
+    // One medium: its phase value at mu, kept for the roulette (nee_survival would look it up
+    // again); negative when not looked up.
+    float phase_one = -1.0f;
     if (known != nullptr && one) {
-        f = media.scattering(*known, x, media_mask, mu);  // no lookup
+        // MediumSet::scattering(*known, ...) for one medium, no lookup.
+        if (is_black(known->sigma_s)) {
+            f = Rgb(0.0f);
+        } else {
+            phase_one = media.phase_value(static_cast<uint32_t>(__builtin_ctz(media_mask)), mu);
+            f = known->sigma_s * phase_one;
+        }
     } else {
         f = media.scattering(x, media_mask, mu);
         ++counters.density_lookups;
@@ -115,9 +129,12 @@ Rgb scattered_direct_one(const MediumSet& media, const Light& light, size_t ligh
                                        counters);
         }
     }
-    if (settings.nee_roulette && !cached && !is_black(f))
-        return roulette_light_term(nee_survival(media, media_mask, mu), media, light, occlusion, x,
-                                   in, f, settings, step, rng, counters);
+    if (settings.nee_roulette && !cached && !is_black(f)) {
+        const float q = phase_one >= 0.0f ? nee_survival_of_phase(std::max(0.0f, phase_one))
+                                          : nee_survival(media, media_mask, mu);
+        return roulette_light_term(q, media, light, occlusion, x, in, f, settings, step, rng,
+                                   counters);
+    }
     return light_term(media, light, occlusion, x, in, f, cached, settings, step, rng, counters);
 }
 

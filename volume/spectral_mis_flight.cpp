@@ -24,7 +24,7 @@ FreeFlight sample_free_flight_spectral_mis(const MediumSet& media, const Ray& ra
     // (the same numbers; dividing each by mu keeps them <= 1).
     Rgb nulls(1.0f);
     const bool escaped = walk_tentative_collisions(
-        media, query, ray, rng, counters,
+        media, query, rng, counters,
         [&](float t, const MajorantSegment& s, const PointCoefficients& k, float mu) {
             const Rgb sigma_n = glm::max(Rgb(mu) - k.sigma_t, Rgb(0.0f));
             const float x = rng.next_float() * mu;

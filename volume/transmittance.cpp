@@ -37,11 +37,11 @@ Rgb march(const MediumSet& media, const Ray& ray, float step_m,
 }
 
 /// Delta tracking of one channel: 1 if the walk crosses without a real collision, else 0.
-float delta_channel(const MediumSet& media, const RayMediaQuery& query, const Ray& ray, int c,
-                    Pcg32& rng, VolumeCounters& counters) {
+float delta_channel(const MediumSet& media, const RayMediaQuery& query, int c, Pcg32& rng,
+                    VolumeCounters& counters) {
     Collisions collisions(rng);
     const bool crossed =
-        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+        walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
             const float mu = s.sigma_max[c];
             if (!(mu > 0.0f))
                 return true;
@@ -56,11 +56,11 @@ float delta_channel(const MediumSet& media, const RayMediaQuery& query, const Ra
 
 Rgb delta(const MediumSet& media, const Ray& ray, Pcg32& rng, VolumeCounters& counters) {
     const RayMediaQuery query(media, ray);
-    const float r = delta_channel(media, query, ray, 0, rng, counters);
+    const float r = delta_channel(media, query, 0, rng, counters);
     if (media.grey_extinction())
         return Rgb(r);
-    return Rgb(r, delta_channel(media, query, ray, 1, rng, counters),
-               delta_channel(media, query, ray, 2, rng, counters));
+    return Rgb(r, delta_channel(media, query, 1, rng, counters),
+               delta_channel(media, query, 2, rng, counters));
 }
 
 /// Ratio tracking (Novák et al. 2014, "Residual Ratio Tracking for Estimating Attenuation in
@@ -70,11 +70,40 @@ Rgb delta(const MediumSet& media, const Ray& ray, Pcg32& rng, VolumeCounters& co
 Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
           VolumeCounters& counters) {
     const RayMediaQuery query(media, ray);
+    // Grey extinction: the three control depths are the same numbers, so one exp serves all.
+    const bool grey = media.grey_extinction();
+    const auto control_transmittance = [grey](const glm::dvec3& depth) {
+        return grey ? Rgb(static_cast<float>(std::exp(-depth.x))) : Rgb(glm::exp(-depth));
+    };
     Rgb weight(1.0f);
     glm::dvec3 control_depth(0.0);
     Collisions collisions(rng);
+    // A segment's collisions, out of line: most segments have none (Collisions::passes).
+    const auto collide = [&](const MajorantSegment& s, const BrickRef* brick, const Rgb& control,
+                             float mu) __attribute__((noinline)) {
+        // The control's transmittance so far (exact) scales the roulette threshold; taken
+        // once per segment, at its first collision.
+        Rgb t_control(-1.0f);
+        return collisions.walk(s.t0, s.t1, mu, [&](float t) {
+            const Rgb sigma = coefficients_at(media, query, s, brick, t).sigma_t;
+            ++counters.density_lookups;
+            // sigma - control <= mu up to rounding; the clamp only guards rounding.
+            weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
+            if (t_control.r < 0.0f)
+                t_control = control_transmittance(control_depth);
+            // Russian roulette once the estimate is small: unbiased, bounds the walk length.
+            const float w = max_component(weight * t_control);
+            if (w < kRouletteWeight) {
+                const float survive = w / kRouletteWeight;
+                if (!(rng.next_float() < survive))
+                    return false;
+                weight /= survive;
+            }
+            return true;
+        });
+    };
     const bool alive =
-        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+        walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
             const Rgb control = residual ? s.sigma_min : Rgb(0.0f);
             if (residual) {
                 bool gone = true;
@@ -88,32 +117,13 @@ Rgb ratio(const MediumSet& media, const Ray& ray, bool residual, Pcg32& rng,
                     return false;
             }
             const float mu = max_component(s.sigma_max - control);
-            if (!(mu > 0.0f))
+            if (!(mu > 0.0f) || collisions.passes(s.t0, s.t1, mu))
                 return true;
-            // The control's transmittance so far (exact) scales the roulette threshold; taken
-            // once per segment, at its first collision.
-            Rgb t_control(-1.0f);
-            return collisions.walk(s.t0, s.t1, mu, [&](float t) {
-                const Rgb sigma = coefficients_at(media, query, s, brick, t).sigma_t;
-                ++counters.density_lookups;
-                // sigma - control <= mu up to rounding; the clamp only guards rounding.
-                weight *= glm::max(Rgb(1.0f) - (sigma - control) / mu, Rgb(0.0f));
-                if (t_control.r < 0.0f)
-                    t_control = Rgb(glm::exp(-control_depth));
-                // Russian roulette once the estimate is small: unbiased, bounds the walk length.
-                const float w = max_component(weight * t_control);
-                if (w < kRouletteWeight) {
-                    const float survive = w / kRouletteWeight;
-                    if (!(rng.next_float() < survive))
-                        return false;
-                    weight /= survive;
-                }
-                return true;
-            });
+            return collide(s, brick, control, mu);
         });
     if (!alive)
         return Rgb(0.0f);
-    return weight * Rgb(glm::exp(-control_depth));
+    return weight * control_transmittance(control_depth);
 }
 
 }  // namespace
@@ -198,7 +208,7 @@ TrackedWalk track_collisions(const MediumSet& media, const Ray& ray, const Rgb* 
     glm::dvec3 control_depth(0.0);  // integral of the minorant before the current segment
     Collisions collisions(rng);
     const bool alive =
-        walk_majorants(media, ray, [&](const MajorantSegment& s, const BrickRef* brick) {
+        walk_majorants(media, query, [&](const MajorantSegment& s, const BrickRef* brick) {
             const Rgb control = s.sigma_min;
             const float mu = max_component(s.sigma_max);
             const glm::dvec3 depth_before = control_depth;
@@ -261,7 +271,7 @@ FreeFlight sample_free_flight(const MediumSet& media, const Ray& ray, const Rgb&
     const bool emits = media.emits();
     FreeFlight flight;
     walk_tentative_collisions(
-        media, query, ray, rng, counters,
+        media, query, rng, counters,
         [&](float t, const MajorantSegment& s, const PointCoefficients& k, float mu) {
             if (emits)
                 flight.emitted +=

@@ -9,6 +9,7 @@
 #include "core/math.h"
 #include "core/zeroed_allocator.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <new>
@@ -304,37 +305,57 @@ bool DensityGrid::walk(const Vec3& o_index, const Vec3& d_index, float t0, float
     }
     if (!(tb > ta))
         return true;
-    IVec3 cell = glm::clamp(IVec3(glm::floor(p + d * ta)), IVec3(0), m_bricks - IVec3(1));
+    // Truncation is the floor for q >= 0, and both clamp to 0 below.
+    IVec3 cell = glm::clamp(IVec3(p + d * ta), IVec3(0), m_bricks - IVec3(1));
     IVec3 step(0);
     Vec3 t_next(kInfinity), t_delta(0.0f);
+    // The brick slot follows the cell: a step along axis a moves it by +-stride[a].
+    const ptrdiff_t stride[3] = {1, m_bricks.x, static_cast<ptrdiff_t>(m_bricks.x) * m_bricks.y};
+    ptrdiff_t slot_step[3] = {0, 0, 0};
     for (int a = 0; a < 3; ++a) {
         if (d[a] > 0.0f) {
             step[a] = 1;
+            slot_step[a] = stride[a];
             t_next[a] = (static_cast<float>(cell[a] + 1) - p[a]) / d[a];
             t_delta[a] = 1.0f / d[a];
         } else if (d[a] < 0.0f) {
             step[a] = -1;
+            slot_step[a] = -stride[a];
             t_next[a] = (static_cast<float>(cell[a]) - p[a]) / d[a];
             t_delta[a] = -1.0f / d[a];
         }
     }
+    ptrdiff_t slot = static_cast<ptrdiff_t>(brick_slot(cell));
+    // One step along an axis: false when it leaves the grid. Called with each axis's own
+    // members (no indexing by a run-time axis), so the walk's state stays in registers.
+    const auto advance = [&slot](int& c, int s, int cells, ptrdiff_t ds, float& tn, float dt) {
+        c += s;
+        if (c < 0 || c >= cells)
+            return false;
+        slot += ds;
+        tn += dt;
+        return true;
+    };
     for (float t = ta; t < tb;) {
         const int axis =
             t_next.x <= t_next.y ? (t_next.x <= t_next.z ? 0 : 2) : (t_next.y <= t_next.z ? 1 : 2);
-        const float t_exit = std::min(t_next[axis], tb);
-        const size_t slot = brick_slot(cell);
-        const int32_t storage = m_brick_index[slot];
+        const float t_exit = std::min(axis == 0 ? t_next.x : (axis == 1 ? t_next.y : t_next.z), tb);
+        const int32_t storage = m_brick_index[static_cast<size_t>(slot)];
         if (storage >= 0 && t_exit > t) {
             const BrickRef brick{&m_voxels[static_cast<size_t>(storage) * kBrickVoxels],
                                  m_origin_f + Vec3(cell * kBrick)};
-            if (!visit(BrickSpan{t, t_exit, m_brick_max[slot], m_brick_min[slot]}, brick))
+            if (!visit(BrickSpan{t, t_exit, m_brick_max[static_cast<size_t>(slot)],
+                                 m_brick_min[static_cast<size_t>(slot)]},
+                       brick))
                 return false;
         }
         t = std::max(t, t_exit);
-        cell[axis] += step[axis];
-        if (cell[axis] < 0 || cell[axis] >= m_bricks[axis])
+        const bool inside =
+            axis == 0   ? advance(cell.x, step.x, m_bricks.x, slot_step[0], t_next.x, t_delta.x)
+            : axis == 1 ? advance(cell.y, step.y, m_bricks.y, slot_step[1], t_next.y, t_delta.y)
+                        : advance(cell.z, step.z, m_bricks.z, slot_step[2], t_next.z, t_delta.z);
+        if (!inside)
             break;
-        t_next[axis] += t_delta[axis];
     }
     return true;
 }

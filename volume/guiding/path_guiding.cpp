@@ -2,16 +2,15 @@
 
 namespace kasumi {
 
-void GuidingPathRecorder::vertex(const Vec3& position, const Vec3& wi, float pdf_sr,
-                                 const Rgb& throughput) {
-    if (m_records == nullptr || m_count >= kMaxVertices)
+void GuidingPathRecorder::record_vertex(const Vec3& position, const Vec3& wi, float pdf_sr,
+                                        const Rgb& throughput) {
+    if (m_count >= kMaxVertices)
         return;
-    m_vertices[static_cast<size_t>(m_count++)] = Vertex{position, wi, pdf_sr, throughput};
+    m_vertices[static_cast<size_t>(m_count++)] =
+        Vertex{position, wi, pdf_sr, throughput, Rgb(0.0f)};
 }
 
-void GuidingPathRecorder::add(const Rgb& contribution) {
-    if (m_records == nullptr)
-        return;
+void GuidingPathRecorder::record_radiance(const Rgb& contribution) {
     for (int i = 0; i < m_count; ++i) {
         Vertex& v = m_vertices[static_cast<size_t>(i)];
         for (int c = 0; c < 3; ++c) {
@@ -21,9 +20,7 @@ void GuidingPathRecorder::add(const Rgb& contribution) {
     }
 }
 
-void GuidingPathRecorder::finish() {
-    if (m_records == nullptr)
-        return;
+void GuidingPathRecorder::flush() {
     for (int i = 0; i < m_count; ++i) {
         const Vertex& v = m_vertices[static_cast<size_t>(i)];
         const float weight = v.pdf > 0.0f ? luminance(v.incident) / v.pdf : 0.0f;

@@ -34,19 +34,36 @@ class GuidingPathRecorder {
 
     bool active() const { return m_records != nullptr; }
     /// A vertex at `position` continued in `wi` (drawn with density pdf_sr), `throughput` after it.
-    void vertex(const Vec3& position, const Vec3& wi, float pdf_sr, const Rgb& throughput);
+    void vertex(const Vec3& position, const Vec3& wi, float pdf_sr, const Rgb& throughput) {
+        if (m_records != nullptr)
+            record_vertex(position, wi, pdf_sr, throughput);
+    }
     /// Radiance the path gathered (already multiplied by the path's throughput), cd/m².
-    void add(const Rgb& contribution);
+    void add(const Rgb& contribution) {
+        if (m_records != nullptr)
+            record_radiance(contribution);
+    }
     /// Appends the records of the path's vertices (once; the destructor calls it).
-    void finish();
+    void finish() {
+        if (m_records != nullptr)
+            flush();
+    }
 
   private:
+    // The recording itself, out of line: a path that records nothing (rendering without
+    // training) pays one test per call.
+    void record_vertex(const Vec3& position, const Vec3& wi, float pdf_sr, const Rgb& throughput);
+    void record_radiance(const Rgb& contribution);
+    void flush();
+
+    /// Left uninitialised until recorded (record_vertex writes every member): the recorder
+    /// lives on the stack of every path, most of which record nothing.
     struct Vertex {
         Vec3 position;
         Vec3 wi;
         float pdf;
         Rgb throughput;
-        Rgb incident{0.0f};
+        Rgb incident;
     };
     std::vector<GuidingRecord>* m_records;
     std::array<Vertex, kMaxVertices> m_vertices;
