@@ -472,7 +472,8 @@ int zip_threads(int threads, size_t bytes, int blocks) {
 }
 
 /// Writes the ZIP-compressed EXR of `channels` (checked, HALF ones scanned into `half`) to
-/// `path`; returns the HALF channels' flush count.
+/// `path`, with the header make_header gives Imf::OutputFile (its attributes, and the part's
+/// `type` the core library adds); the HALF channels' flushes are counted in `half.report`.
 void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channels,
                    const std::string& path, int threads, HalfPlanes& half) {
     ExrCoreWriter writer(path);
@@ -568,6 +569,62 @@ void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channe
     check_exr_core(writer.finish());
 }
 
+/// Writes a PIZ, RLE or uncompressed EXR of `channels` (checked, HALF ones scanned into `half`)
+/// to `path` through Imf::OutputFile, HALF channels converted a block of rows at a time.
+void write_imf_exr(const Image& header_image, const std::vector<ExrChannelView>& channels,
+                   const std::string& path, ExrCompression compression, int threads,
+                   HalfPlanes& half) {
+    const Imf::Header header = make_header(header_image, channels, compression, half);
+    const size_t width = static_cast<size_t>(header_image.width);
+    const int height = header_image.height;
+    const int block_rows = std::min(kHalfBlockRows, height);
+    const size_t block_values = width * static_cast<size_t>(block_rows);
+    // One block of rows of every HALF channel, plane after plane (not cleared: each value
+    // is written before OpenEXR reads it).
+    std::unique_ptr<Imath::half[]> block(
+        half.any() ? new Imath::half[half.channels.size() * block_values] : nullptr);
+    // The frame buffer of rows [y0, y0 + block_rows): FLOAT channels read from the planes
+    // themselves, HALF channels from the block, addressed as if it held the whole image
+    // (OpenEXR reads row y at base + y * yStride; the base is offset back by y0 rows, as
+    // Imf::Slice::Make does for data windows).
+    const auto frame_buffer_at = [&](int y0) {
+        Imf::FrameBuffer frame_buffer;
+        size_t k = 0;
+        for (const ExrChannelView& channel : channels) {
+            // OpenEXR only reads through the slice; the const_cast is its API's, not a write.
+            if (channel.type == ExrPixelType::Half) {
+                const Imath::half* rows = block.get() + (k++) * block_values;
+                char* base = reinterpret_cast<char*>(const_cast<Imath::half*>(rows)) -
+                             static_cast<ptrdiff_t>(y0) *
+                                 static_cast<ptrdiff_t>(sizeof(Imath::half) * width);
+                frame_buffer.insert(channel.name, Imf::Slice(Imf::HALF, base, sizeof(Imath::half),
+                                                             sizeof(Imath::half) * width));
+            } else {
+                char* base = reinterpret_cast<char*>(const_cast<float*>(channel.data));
+                frame_buffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                                             sizeof(float) * width));
+            }
+        }
+        return frame_buffer;
+    };
+    Imf::OutputFile out(path.c_str(), header, exr_write_threads(threads));
+    if (!half.any()) {
+        out.setFrameBuffer(frame_buffer_at(0));
+        out.writePixels(height);
+    } else {
+        for (int y0 = 0; y0 < height; y0 += block_rows) {
+            const int rows = std::min(block_rows, height - y0);
+            const size_t first = static_cast<size_t>(y0) * width;
+            for (size_t k = 0; k < half.channels.size(); ++k)
+                convert_to_half(channels[half.channels[k]].data + first,
+                                static_cast<size_t>(rows) * width, block.get() + k * block_values,
+                                half.report);
+            out.setFrameBuffer(frame_buffer_at(y0));
+            out.writePixels(rows);
+        }
+    }
+}
+
 }  // namespace
 
 bool parse_exr_compression(const std::string& text, ExrCompression& compression) {
@@ -623,68 +680,11 @@ ExrWriteReport write_exr(const Image& header_image, const std::vector<ExrChannel
     check_writable(header_image, channels);
     HalfPlanes half = scan_half_channels(header_image, channels);
     AtomicFile file(path);
-    if (compression == ExrCompression::Zip) {
-        try {
-            write_zip_exr(header_image, channels, file.temp_path(), threads, half);
-        } catch (const Error&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw_output_error(path + ": cannot write EXR: " + e.what());
-        }
-        file.commit();
-        return half.report;
-    }
     try {
-        const Imf::Header header = make_header(header_image, channels, compression, half);
-        const size_t width = static_cast<size_t>(header_image.width);
-        const int height = header_image.height;
-        const int block_rows = std::min(kHalfBlockRows, height);
-        const size_t block_values = width * static_cast<size_t>(block_rows);
-        // One block of rows of every HALF channel, plane after plane (not cleared: each value
-        // is written before OpenEXR reads it).
-        std::unique_ptr<Imath::half[]> block(
-            half.any() ? new Imath::half[half.channels.size() * block_values] : nullptr);
-        // The frame buffer of rows [y0, y0 + block_rows): FLOAT channels read from the planes
-        // themselves, HALF channels from the block, addressed as if it held the whole image
-        // (OpenEXR reads row y at base + y * yStride; the base is offset back by y0 rows, as
-        // Imf::Slice::Make does for data windows).
-        const auto frame_buffer_at = [&](int y0) {
-            Imf::FrameBuffer frame_buffer;
-            size_t k = 0;
-            for (const ExrChannelView& channel : channels) {
-                // OpenEXR only reads through the slice; the const_cast is its API's, not a write.
-                if (channel.type == ExrPixelType::Half) {
-                    const Imath::half* rows = block.get() + (k++) * block_values;
-                    char* base = reinterpret_cast<char*>(const_cast<Imath::half*>(rows)) -
-                                 static_cast<ptrdiff_t>(y0) *
-                                     static_cast<ptrdiff_t>(sizeof(Imath::half) * width);
-                    frame_buffer.insert(channel.name,
-                                        Imf::Slice(Imf::HALF, base, sizeof(Imath::half),
-                                                   sizeof(Imath::half) * width));
-                } else {
-                    char* base = reinterpret_cast<char*>(const_cast<float*>(channel.data));
-                    frame_buffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
-                                                                 sizeof(float) * width));
-                }
-            }
-            return frame_buffer;
-        };
-        Imf::OutputFile out(file.temp_path().c_str(), header, exr_write_threads(threads));
-        if (!half.any()) {
-            out.setFrameBuffer(frame_buffer_at(0));
-            out.writePixels(height);
-        } else {
-            for (int y0 = 0; y0 < height; y0 += block_rows) {
-                const int rows = std::min(block_rows, height - y0);
-                const size_t first = static_cast<size_t>(y0) * width;
-                for (size_t k = 0; k < half.channels.size(); ++k)
-                    convert_to_half(channels[half.channels[k]].data + first,
-                                    static_cast<size_t>(rows) * width,
-                                    block.get() + k * block_values, half.report);
-                out.setFrameBuffer(frame_buffer_at(y0));
-                out.writePixels(rows);
-            }
-        }
+        if (compression == ExrCompression::Zip)
+            write_zip_exr(header_image, channels, file.temp_path(), threads, half);
+        else
+            write_imf_exr(header_image, channels, file.temp_path(), compression, threads, half);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
