@@ -4,7 +4,8 @@
 # in the common layout is read without it (volume/grid/vdb_direct.h), and through it with
 # KASUMI_VDB_DIRECT=0 (also the path of every other layout); a missing or foreign module is a
 # clear runtime error (exit 1) naming the paths tried, with no output written. OpenColorIO likewise (libkasumi_ocio.so,
-# only for the PNG preview). And `--aovs none` writes exactly R, G, B, A.
+# only for the PNG preview). And `--aovs none` writes exactly R, G, B, A. Every subcommand is
+# listed by --help and parses its own --help when named first (apps/main.cpp declares only it).
 # usage: startup_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
 kasumi="$1"
@@ -81,5 +82,19 @@ expect_exit 0 "" -- render "$work/fog.json" -o "$work/all.exr" --no-preview -q
 expect_exit 0 "" -- render "$work/fog.json" -o "$work/tv.exr" --no-preview -q --aovs transmittance,depth
 [ "$(exr_channels "$work/tv.exr")" = "A,B,G,R,depth.Z,transmittance.B,transmittance.G,transmittance.R" ] ||
   fail "--aovs transmittance,depth: channels $(exr_channels "$work/tv.exr")"
+
+# Only the subcommand named first is declared (apps/main.cpp); --help, an unknown or a missing
+# name still see them all, and each one named first parses its own options.
+subcommands="render plan check probe phase make-cloud sequence movie study"
+expect_exit 0 "" -- --help
+cp "$work/stdout" "$work/help"
+for sub in $subcommands; do
+  grep -q "^  $sub " "$work/help" || fail "--help does not list $sub"
+  expect_exit 0 "" -- "$sub" --help
+  grep -q "^Usage: .* $sub \[OPTIONS\]" "$work/stdout" || fail "$sub --help: $(head -c 200 "$work/stdout")"
+done
+expect_exit 2 "A subcommand is required" -- bogus
+expect_exit 2 "A subcommand is required" --
+expect_exit 2 "not expected: plan" -- render "$work/fog.json" plan --no-preview -q
 
 finish "startup cli"
