@@ -2,17 +2,10 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/exr_half.h"
+#include "core/exr_module.h"
+#include "core/module_loader.h"
 
-#include <ImfChannelList.h>
-#include <ImfChromaticities.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-#include <ImfOutputFile.h>
-#include <ImfStandardAttributes.h>
-#include <ImfStringAttribute.h>
-#include <ImfThreading.h>
-#include <half.h>
 #include <openexr.h>
 #include <zlib.h>
 #if defined(__x86_64__)
@@ -25,13 +18,17 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 #include <thread>
+
+#ifndef KASUMI_EXR_MODULE_BUILD_PATH
+#define KASUMI_EXR_MODULE_BUILD_PATH ""
+#endif
 
 namespace kasumi {
 namespace {
@@ -98,124 +95,13 @@ void check_writable(const Image& header, const std::vector<ExrChannelView>& chan
     }
 }
 
-/// Keeps zlib's deflate state in the process: zlib allocates ~270 KB of it for every compressed
-/// block and frees it after; glibc's default trim threshold (128 KB) then returns the top of the
-/// arena to the kernel each time (madvise, and in a VM a TLB shootdown on every core): 4% of the
-/// CPU of a 640x480 soft-shadow render. Keep up to 64 MB of freed memory instead.
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-    static std::once_flag once;
-    std::call_once(once, [] { mallopt(M_TRIM_THRESHOLD, 64 << 20); });
-#endif
-}
-
-/// Threads OpenEXR compresses with (its global pool, sized once): one per hardware thread. A
-/// 1280x720 image with its AOVs is ~17 MB of ZIP-compressed scanlines; one thread takes longer
-/// to compress it than the fast sky takes to render it.
-int exr_threads() {
-    static std::once_flag once;
-    static int threads = 1;
-    std::call_once(once, [] {
-        threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-        Imf::setGlobalThreadCount(threads);
-    });
-    return threads;
-}
-
-/// OpenEXR's thread count for a write asked to use `threads` (0: every hardware thread): 1
-/// compresses on the calling thread (0 for OpenEXR, and its pool is never started: a render
-/// with --threads 1 no longer starts two compression threads, which for a 320x240 image cost
-/// more CPU in start-up and hand-offs than they saved).
-int exr_write_threads(int threads) {
-    keep_freed_memory();
-    if (threads == 1)
-        return 0;
-    const int pool = exr_threads();
-    return threads <= 0 ? pool : std::min(threads, pool);
-}
-
-Imf::Compression imf_compression(ExrCompression compression) {
-    switch (compression) {
-        case ExrCompression::Piz:
-            return Imf::PIZ_COMPRESSION;
-        case ExrCompression::Rle:
-            return Imf::RLE_COMPRESSION;
-        case ExrCompression::None:
-            return Imf::NO_COMPRESSION;
-        case ExrCompression::Zip:
-            break;
-    }
-    return Imf::ZIP_COMPRESSION;
-}
-
-/// HALF channels: what the header reports of them (scanned before the file is opened), and a
-/// buffer of a block of their rows, converted just before OpenEXR copies them (the whole image
-/// converted first was 9.8 MB of fresh pages at 1280x960 R, G, B, A, written once and read once:
-/// page faults and cache misses; a block of rows stays in the cache).
+/// HALF channels: what the header reports of them (scanned before the file is opened; the
+/// values are converted while each block is packed).
 struct HalfPlanes {
     std::vector<size_t> channels;  ///< indices of the HALF channels
     ExrWriteReport report;
     bool any() const { return !channels.empty(); }
 };
-
-/// Rows converted per block: a multiple of ZIP's 16 scanlines (and PIZ's 32), 4 blocks of ZIP
-/// so OpenEXR's threads compress them together; R, G, B, A of a 1280-pixel row: 640 KB a block.
-constexpr int kHalfBlockRows = 64;
-
-/// Rounds `n` floats to half (Imath: to nearest, ties to even), saturating |v| > 65504 to
-/// +-65504 (Imath would give infinity from 65520 on) and counting the non-zero values flushed
-/// to zero (see ExrPixelType). Finite values only (checked first).
-void convert_to_half_scalar(const float* from, size_t n, Imath::half* to, ExrWriteReport& report) {
-    for (size_t i = 0; i < n; ++i) {
-        const float v = std::clamp(from[i], -kHalfMax, kHalfMax);
-        to[i] = Imath::half(v);
-        if (v != 0.0f && (to[i].bits() & 0x7fffu) == 0)  // +-0 from a non-zero value
-            ++report.half_flushed_to_zero;
-    }
-}
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define KASUMI_EXR_F16C 1
-static_assert(sizeof(Imath::half) == 2, "the F16C path stores 16-bit halves");
-/// The same 8 values at a time with the F16C instruction VCVTPS2PH in round-to-nearest-even
-/// mode: IEEE 754 binary32 -> binary16 rounding, which is what Imath's software conversion
-/// computes (and what Imath itself uses when built for F16C), so the same bits; ~10x fewer
-/// instructions (the conversion was 8% of a 640x480 render's). Clamping first keeps the
-/// saturation rule; a lane can only flush to zero when 0 < |v| < 2^-24, checked per block.
-__attribute__((target("avx,f16c"))) void convert_to_half_f16c(const float* from, size_t n,
-                                                              Imath::half* to,
-                                                              ExrWriteReport& report) {
-    const __m256 high = _mm256_set1_ps(kHalfMax), low = _mm256_set1_ps(-kHalfMax);
-    const __m256 sign = _mm256_set1_ps(-0.0f), tiny = _mm256_set1_ps(0x1p-24f);
-    const __m256 zero = _mm256_setzero_ps();
-    size_t i = 0;
-    for (; i + 8 <= n; i += 8) {
-        const __m256 v = _mm256_min_ps(_mm256_max_ps(_mm256_loadu_ps(from + i), low), high);
-        const __m128i h = _mm256_cvtps_ph(v, _MM_FROUND_TO_NEAREST_INT);
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(to + i), h);
-        const __m256 magnitude = _mm256_andnot_ps(sign, v);
-        const int small = _mm256_movemask_ps(_mm256_and_ps(
-            _mm256_cmp_ps(magnitude, tiny, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_NEQ_OQ)));
-        if (small != 0) {
-            for (int k = 0; k < 8; ++k)
-                if (((small >> k) & 1) != 0 && (to[i + k].bits() & 0x7fffu) == 0)
-                    ++report.half_flushed_to_zero;
-        }
-    }
-    convert_to_half_scalar(from + i, n - i, to + i, report);
-}
-#endif
-
-void convert_to_half(const float* from, size_t n, Imath::half* to, ExrWriteReport& report) {
-#if defined(KASUMI_EXR_F16C)
-    static const bool f16c = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
-    if (f16c) {
-        convert_to_half_f16c(from, n, to, report);
-        return;
-    }
-#endif
-    convert_to_half_scalar(from, n, to, report);
-}
 
 HalfPlanes scan_half_channels(const Image& header, const std::vector<ExrChannelView>& channels) {
     const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
@@ -227,35 +113,6 @@ HalfPlanes scan_half_channels(const Image& header, const std::vector<ExrChannelV
         scan_half_range(channels[c].data, pixels, planes.report);
     }
     return planes;
-}
-
-Imf::Header make_header(const Image& image, const std::vector<ExrChannelView>& channels,
-                        ExrCompression compression, const HalfPlanes& half) {
-    Imf::Header header(image.width, image.height);
-    header.compression() = imf_compression(compression);  // not ZIP: write_zip_exr writes it
-    header.lineOrder() = Imf::INCREASING_Y;
-    const Chromaticities& c = image.chromaticities;
-    Imf::addChromaticities(
-        header,
-        Imf::Chromaticities(Imath::V2f(c.red_x, c.red_y), Imath::V2f(c.green_x, c.green_y),
-                            Imath::V2f(c.blue_x, c.blue_y), Imath::V2f(c.white_x, c.white_y)));
-    for (const ExrChannelView& channel : channels)
-        header.channels().insert(
-            channel.name,
-            Imf::Channel(channel.type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT));
-    for (const auto& kv : image.metadata)
-        header.insert(kExrMetadataPrefix + kv.first, Imf::StringAttribute(kv.second));
-    if (half.any()) {
-        // In the file itself: a reader sees whether values were saturated, and from what.
-        char max_abs[32];
-        std::snprintf(max_abs, sizeof max_abs, "%.9g",
-                      static_cast<double>(half.report.half_max_abs));
-        header.insert(std::string(kExrMetadataPrefix) + "half/saturated",
-                      Imf::StringAttribute(std::to_string(half.report.half_saturated)));
-        header.insert(std::string(kExrMetadataPrefix) + "half/max_abs",
-                      Imf::StringAttribute(max_abs));
-    }
-    return header;
 }
 
 /// ZIP (OpenEXR's ZIP_COMPRESSION) is written here through OpenEXR's core C library, which
@@ -471,28 +328,32 @@ int zip_threads(int threads, size_t bytes, int blocks) {
     return std::max(1, std::min({asked, by_size, blocks}));
 }
 
+/// Keeps zlib's deflate state in the process: zlib allocates ~270 KB of it for every write (it
+/// was every compressed block with Imf) and frees it after; glibc's default trim threshold (128 KB)
+/// then returns the top of the arena to the kernel each time (madvise, and in a VM a TLB shootdown
+/// on every core): 4% of the CPU of a 640x480 soft-shadow render. Keep up to 64 MB of freed memory
+/// instead.
+void keep_freed_memory() {
+#if defined(__GLIBC__)
+    static std::once_flag once;
+    std::call_once(once, [] { mallopt(M_TRIM_THRESHOLD, 64 << 20); });
+#endif
+}
+
 /// Writes the ZIP-compressed EXR of `channels` (checked, HALF ones scanned into `half`) to
 /// `path`, with the header make_header gives Imf::OutputFile (its attributes, and the part's
 /// `type` the core library adds); the HALF channels' flushes are counted in `half.report`.
 void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channels,
                    const std::string& path, int threads, HalfPlanes& half) {
+    keep_freed_memory();
     ExrCoreWriter writer(path);
     exr_context_t context = writer.context();
     int part = 0;
     check_exr_core(exr_add_part(context, nullptr, EXR_STORAGE_SCANLINE, &part));
     check_exr_core(exr_initialize_required_attr_simple(context, part, image.width, image.height,
                                                        EXR_COMPRESSION_ZIP));
-    std::vector<std::pair<std::string, std::string>> attributes;
-    for (const auto& kv : image.metadata)
-        attributes.emplace_back(kExrMetadataPrefix + kv.first, kv.second);
-    if (half.any()) {
-        char max_abs[32];
-        std::snprintf(max_abs, sizeof max_abs, "%.9g",
-                      static_cast<double>(half.report.half_max_abs));
-        attributes.emplace_back(std::string(kExrMetadataPrefix) + "half/saturated",
-                                std::to_string(half.report.half_saturated));
-        attributes.emplace_back(std::string(kExrMetadataPrefix) + "half/max_abs", max_abs);
-    }
+    const std::vector<std::pair<std::string, std::string>> attributes =
+        exr_string_attributes(image, half.any(), half.report);
     bool long_names = false;  // beyond 31 bytes: the file's "long names" flag, as Imf sets it
     for (const auto& kv : attributes)
         long_names = long_names || kv.first.size() > 31;
@@ -569,60 +430,15 @@ void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channe
     check_exr_core(writer.finish());
 }
 
-/// Writes a PIZ, RLE or uncompressed EXR of `channels` (checked, HALF ones scanned into `half`)
-/// to `path` through Imf::OutputFile, HALF channels converted a block of rows at a time.
-void write_imf_exr(const Image& header_image, const std::vector<ExrChannelView>& channels,
-                   const std::string& path, ExrCompression compression, int threads,
-                   HalfPlanes& half) {
-    const Imf::Header header = make_header(header_image, channels, compression, half);
-    const size_t width = static_cast<size_t>(header_image.width);
-    const int height = header_image.height;
-    const int block_rows = std::min(kHalfBlockRows, height);
-    const size_t block_values = width * static_cast<size_t>(block_rows);
-    // One block of rows of every HALF channel, plane after plane (not cleared: each value
-    // is written before OpenEXR reads it).
-    std::unique_ptr<Imath::half[]> block(
-        half.any() ? new Imath::half[half.channels.size() * block_values] : nullptr);
-    // The frame buffer of rows [y0, y0 + block_rows): FLOAT channels read from the planes
-    // themselves, HALF channels from the block, addressed as if it held the whole image
-    // (OpenEXR reads row y at base + y * yStride; the base is offset back by y0 rows, as
-    // Imf::Slice::Make does for data windows).
-    const auto frame_buffer_at = [&](int y0) {
-        Imf::FrameBuffer frame_buffer;
-        size_t k = 0;
-        for (const ExrChannelView& channel : channels) {
-            // OpenEXR only reads through the slice; the const_cast is its API's, not a write.
-            if (channel.type == ExrPixelType::Half) {
-                const Imath::half* rows = block.get() + (k++) * block_values;
-                char* base = reinterpret_cast<char*>(const_cast<Imath::half*>(rows)) -
-                             static_cast<ptrdiff_t>(y0) *
-                                 static_cast<ptrdiff_t>(sizeof(Imath::half) * width);
-                frame_buffer.insert(channel.name, Imf::Slice(Imf::HALF, base, sizeof(Imath::half),
-                                                             sizeof(Imath::half) * width));
-            } else {
-                char* base = reinterpret_cast<char*>(const_cast<float*>(channel.data));
-                frame_buffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
-                                                             sizeof(float) * width));
-            }
-        }
-        return frame_buffer;
-    };
-    Imf::OutputFile out(path.c_str(), header, exr_write_threads(threads));
-    if (!half.any()) {
-        out.setFrameBuffer(frame_buffer_at(0));
-        out.writePixels(height);
-    } else {
-        for (int y0 = 0; y0 < height; y0 += block_rows) {
-            const int rows = std::min(block_rows, height - y0);
-            const size_t first = static_cast<size_t>(y0) * width;
-            for (size_t k = 0; k < half.channels.size(); ++k)
-                convert_to_half(channels[half.channels[k]].data + first,
-                                static_cast<size_t>(rows) * width, block.get() + k * block_values,
-                                half.report);
-            out.setFrameBuffer(frame_buffer_at(y0));
-            out.writePixels(rows);
-        }
-    }
+const ExrModuleApi& exr_module() {
+    static const ModuleSpec spec{"OpenEXR module",
+                                 "to read EXR files and to write them with piz, rle or none",
+                                 kExrModuleFile,
+                                 "KASUMI_EXR_MODULE",
+                                 KASUMI_EXR_MODULE_BUILD_PATH,
+                                 kExrModuleEntry,
+                                 kExrModuleAbi};
+    return module_api<ExrModuleApi>(spec);
 }
 
 }  // namespace
@@ -684,7 +500,8 @@ ExrWriteReport write_exr(const Image& header_image, const std::vector<ExrChannel
         if (compression == ExrCompression::Zip)
             write_zip_exr(header_image, channels, file.temp_path(), threads, half);
         else
-            write_imf_exr(header_image, channels, file.temp_path(), compression, threads, half);
+            exr_module().write(header_image, channels, file.temp_path(), compression, threads,
+                               half.report);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
@@ -695,50 +512,7 @@ ExrWriteReport write_exr(const Image& header_image, const std::vector<ExrChannel
 }
 
 Image read_exr(const std::string& path) {
-    try {
-        Imf::InputFile in(path.c_str());
-        const Imf::Header& header = in.header();
-        const Imath::Box2i data_window = header.dataWindow();
-        Image image(data_window.max.x - data_window.min.x + 1,
-                    data_window.max.y - data_window.min.y + 1);
-        for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
-            if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
-                throw_input_error(path + ": channel '" + it.name() +
-                                  "' is subsampled, which is not supported");
-            image.add_channel(it.name());
-        }
-        Imf::FrameBuffer frame_buffer;
-        for (ImageChannel& channel : image.channels) {
-            // Slice::Make offsets the base pointer by the data window's origin.
-            frame_buffer.insert(channel.name,
-                                Imf::Slice::Make(Imf::FLOAT, channel.data.data(), data_window));
-        }
-        in.setFrameBuffer(frame_buffer);
-        in.readPixels(data_window.min.y, data_window.max.y);
-
-        if (Imf::hasChromaticities(header)) {
-            const Imf::Chromaticities& c = Imf::chromaticities(header);
-            image.chromaticities = Chromaticities{c.red.x,  c.red.y,  c.green.x, c.green.y,
-                                                  c.blue.x, c.blue.y, c.white.x, c.white.y};
-        }
-        const size_t prefix_length = std::strlen(kExrMetadataPrefix);
-        for (auto it = header.begin(); it != header.end(); ++it) {
-            const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute());
-            // "type" is the part's storage ("scanlineimage", which the core library writing our
-            // ZIP files states), no metadata.
-            if (!text || std::strcmp(it.name(), "type") == 0)
-                continue;
-            std::string key = it.name();
-            if (key.compare(0, prefix_length, kExrMetadataPrefix) == 0)
-                key = key.substr(prefix_length);
-            image.metadata.emplace_back(key, text->value());
-        }
-        return image;
-    } catch (const Error&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw_input_error(path + ": cannot read EXR: " + e.what());
-    }
+    return exr_module().read(path);
 }
 
 }  // namespace kasumi

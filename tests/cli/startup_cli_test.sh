@@ -4,7 +4,7 @@
 # in the common layout is read without it (volume/grid/vdb_direct.h), and through it with
 # KASUMI_VDB_DIRECT=0 (also the path of every other layout); a missing or foreign module is a
 # clear runtime error (exit 1) naming the paths tried, with no output written. OpenColorIO likewise (libkasumi_ocio.so,
-# only for the PNG preview). And `--aovs none` writes exactly R, G, B, A. Every subcommand is
+# only for the PNG preview), and OpenEXR's C++ library (libkasumi_exr.so, not for ZIP output). And `--aovs none` writes exactly R, G, B, A. Every subcommand is
 # listed by --help and parses its own --help when named first (apps/main.cpp declares only it).
 # usage: startup_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
@@ -31,6 +31,17 @@ JSON
 libs=$(loaded_libs render "$work/fog.json" -o "$work/fog.exr" --no-preview -q)
 echo "$libs" | grep -q "openvdb\|kasumi_vdb" && fail "a scene without grids loads OpenVDB: $libs"
 echo "$libs" | grep -q "OpenColorIO\|kasumi_ocio" && fail "a render without preview loads OpenColorIO: $libs"
+# The default ZIP EXR is written through OpenEXR's core library; its C++ library only through
+# the OpenEXR module (libkasumi_exr.so), for piz, rle and none (and reading EXRs).
+echo "$libs" | grep -q "libOpenEXR-\|kasumi_exr" && fail "a zip render loads OpenEXR's C++ library: $libs"
+libs=$(loaded_libs render "$work/fog.json" -o "$work/piz.exr" --no-preview -q --compression piz)
+echo "$libs" | grep -q "kasumi_exr" || fail "a piz render did not load the OpenEXR module: $libs"
+KASUMI_EXR_MODULE=/nonexistent/libkasumi_exr.so expect_exit 1 \
+  "OpenEXR module.*/nonexistent/libkasumi_exr.so \(no such file\).*KASUMI_EXR_MODULE" -- \
+  render "$work/fog.json" -o "$work/rle.exr" --no-preview -q --compression rle
+[ -e "$work/rle.exr" ] && fail "an EXR was written without the OpenEXR module"
+KASUMI_EXR_MODULE=/nonexistent/libkasumi_exr.so expect_exit 0 "" -- \
+  render "$work/fog.json" -o "$work/zip.exr" --no-preview -q
 # The PNG preview loads the OpenColorIO module; without it, exit 1 naming the path tried.
 libs=$(loaded_libs render "$work/fog.json" -o "$work/p/fog.exr" -q)
 echo "$libs" | grep -q "kasumi_ocio" || fail "the preview did not load the OpenColorIO module: $libs"
