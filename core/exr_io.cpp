@@ -210,11 +210,12 @@ struct ZipChannel {
 /// (zlib level 1: on a 1280x720 render with its AOVs, 8% less write time than the default level
 /// for a 3% larger file, float noise compresses little at any level). The zlib stream is the
 /// one compress2 makes at that level, the bytes OpenEXR writes: its 2-byte header, the raw
-/// deflate stream, the Adler-32 of the input (computed here, adler32_of). `chunk` gets the
+/// deflate stream, the Adler-32 of the input (computed here, adler32_of). The chunk is the
 /// packed bytes themselves when deflate does not make them smaller (the format's rule: a chunk
 /// as large as its raw data is raw). Half channels are converted here, counted in `report`.
-/// One deflate state and one pair of buffers serve every chunk (compress2 allocates and clears
-/// ~270 KB of state per call).
+/// One deflate state and one set of buffers, never cleared, serve every chunk (compress2
+/// allocates and clears ~270 KB of state per call; a vector sized for deflate's bound would be
+/// cleared per chunk, 1.4 MB of a 1280-pixel block with every AOV).
 class ZipEncoder {
   public:
     ZipEncoder() {
@@ -227,16 +228,26 @@ class ZipEncoder {
     ZipEncoder(const ZipEncoder&) = delete;
     ZipEncoder& operator=(const ZipEncoder&) = delete;
 
-    void encode(const std::vector<ZipChannel>& channels, size_t width, int y0, int rows,
-                std::vector<uint8_t>& chunk, ExrWriteReport& report) {
+    /// The chunk's bytes, valid until the next call.
+    struct Chunk {
+        const uint8_t* data;
+        size_t size;
+    };
+
+    Chunk encode(const std::vector<ZipChannel>& channels, size_t width, int y0, int rows,
+                 ExrWriteReport& report) {
         size_t row_bytes = 0;
         for (const ZipChannel& channel : channels)
             row_bytes += width * (channel.type == ExrPixelType::Half ? 2u : 4u);
         const size_t n = row_bytes * static_cast<size_t>(rows);
-        if (n > m_capacity) {  // not cleared: every byte is written before it is read
+        constexpr size_t kHeader = 2, kChecksum = 4;
+        const size_t bound = kHeader + deflateBound(&m_stream, static_cast<uLong>(n)) + kChecksum;
+        if (n > m_capacity || bound > m_out_capacity) {  // every byte written before it is read
             m_packed.reset(new uint8_t[n]);
             m_predicted.reset(new uint8_t[n]);
+            m_out.reset(new uint8_t[bound]);
             m_capacity = n;
+            m_out_capacity = bound;
         }
         uint8_t* to = m_packed.get();
         for (int y = y0; y < y0 + rows; ++y) {
@@ -254,31 +265,29 @@ class ZipEncoder {
             }
         }
         zip_predict(m_packed.get(), n, m_predicted.get());
-        constexpr size_t kHeader = 2, kChecksum = 4;
-        chunk.resize(kHeader + deflateBound(&m_stream, static_cast<uLong>(n)) + kChecksum);
-        chunk[0] = 0x78;  // deflate, 32 KB window
-        chunk[1] = 0x01;  // level 1 ("fastest"), no dictionary; header % 31 == 0
+        uint8_t* out = m_out.get();
+        out[0] = 0x78;  // deflate, 32 KB window
+        out[1] = 0x01;  // level 1 ("fastest"), no dictionary; header % 31 == 0
         m_stream.next_in = m_predicted.get();
         m_stream.avail_in = static_cast<uInt>(n);
-        m_stream.next_out = chunk.data() + kHeader;
-        m_stream.avail_out = static_cast<uInt>(chunk.size() - kHeader - kChecksum);
+        m_stream.next_out = out + kHeader;
+        m_stream.avail_out = static_cast<uInt>(bound - kHeader - kChecksum);
         const int result = deflate(&m_stream, Z_FINISH);
         const size_t size = kHeader + m_stream.total_out + kChecksum;
         deflateReset(&m_stream);
         if (result == Z_STREAM_END && size < n) {
             const uint32_t checksum = adler32_of(m_predicted.get(), n);
             for (size_t i = 0; i < kChecksum; ++i)  // big-endian
-                chunk[size - kChecksum + i] = static_cast<uint8_t>(checksum >> (24 - 8 * i));
-            chunk.resize(size);
-        } else {
-            chunk.assign(m_packed.get(), m_packed.get() + n);
+                out[size - kChecksum + i] = static_cast<uint8_t>(checksum >> (24 - 8 * i));
+            return {out, size};
         }
+        return {m_packed.get(), n};
     }
 
   private:
     z_stream m_stream{};
-    std::unique_ptr<uint8_t[]> m_packed, m_predicted;
-    size_t m_capacity = 0;
+    std::unique_ptr<uint8_t[]> m_packed, m_predicted, m_out;
+    size_t m_capacity = 0, m_out_capacity = 0;
 };
 
 /// The message of the last failed OpenEXR core call on this thread (its error callback; the
@@ -396,11 +405,11 @@ void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channe
     };
     if (workers == 1) {
         ZipEncoder encoder;
-        std::vector<uint8_t> chunk;
         for (int b = 0; b < blocks; ++b) {
-            encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b), chunk, half.report);
-            check_exr_core(exr_write_scanline_chunk(context, part, b * kZipBlockRows, chunk.data(),
-                                                    chunk.size()));
+            const ZipEncoder::Chunk chunk =
+                encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b), half.report);
+            check_exr_core(
+                exr_write_scanline_chunk(context, part, b * kZipBlockRows, chunk.data, chunk.size));
         }
     } else {
         // Every chunk compressed first (each thread takes the next block), then written in order.
@@ -409,10 +418,12 @@ void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channe
         std::atomic<int> next{0};
         const auto work = [&](int worker) {
             ZipEncoder encoder;
-            for (int b = next++; b < blocks; b = next++)
-                encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b),
-                               chunks[static_cast<size_t>(b)],
-                               reports[static_cast<size_t>(worker)]);
+            for (int b = next++; b < blocks; b = next++) {
+                const ZipEncoder::Chunk chunk =
+                    encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b),
+                                   reports[static_cast<size_t>(worker)]);
+                chunks[static_cast<size_t>(b)].assign(chunk.data, chunk.data + chunk.size);
+            }
         };
         std::vector<std::thread> helpers;
         for (int w = 1; w < workers; ++w)
