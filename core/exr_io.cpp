@@ -2,17 +2,12 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/exr_half.h"
+#include "core/exr_module.h"
+#include "core/module_loader.h"
 
-#include <ImfChannelList.h>
-#include <ImfChromaticities.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-#include <ImfOutputFile.h>
-#include <ImfStandardAttributes.h>
-#include <ImfStringAttribute.h>
-#include <ImfThreading.h>
-#include <half.h>
+#include <openexr.h>
+#include <zlib.h>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -21,14 +16,19 @@
 #endif
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 #include <thread>
+
+#ifndef KASUMI_EXR_MODULE_BUILD_PATH
+#define KASUMI_EXR_MODULE_BUILD_PATH ""
+#endif
 
 namespace kasumi {
 namespace {
@@ -95,124 +95,13 @@ void check_writable(const Image& header, const std::vector<ExrChannelView>& chan
     }
 }
 
-/// Keeps zlib's deflate state in the process: zlib allocates ~270 KB of it for every compressed
-/// block and frees it after; glibc's default trim threshold (128 KB) then returns the top of the
-/// arena to the kernel each time (madvise, and in a VM a TLB shootdown on every core): 4% of the
-/// CPU of a 640x480 soft-shadow render. Keep up to 64 MB of freed memory instead.
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-    static std::once_flag once;
-    std::call_once(once, [] { mallopt(M_TRIM_THRESHOLD, 64 << 20); });
-#endif
-}
-
-/// Threads OpenEXR compresses with (its global pool, sized once): one per hardware thread. A
-/// 1280x720 image with its AOVs is ~17 MB of ZIP-compressed scanlines; one thread takes longer
-/// to compress it than the fast sky takes to render it.
-int exr_threads() {
-    static std::once_flag once;
-    static int threads = 1;
-    std::call_once(once, [] {
-        threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-        Imf::setGlobalThreadCount(threads);
-    });
-    return threads;
-}
-
-/// OpenEXR's thread count for a write asked to use `threads` (0: every hardware thread): 1
-/// compresses on the calling thread (0 for OpenEXR, and its pool is never started: a render
-/// with --threads 1 no longer starts two compression threads, which for a 320x240 image cost
-/// more CPU in start-up and hand-offs than they saved).
-int exr_write_threads(int threads) {
-    keep_freed_memory();
-    if (threads == 1)
-        return 0;
-    const int pool = exr_threads();
-    return threads <= 0 ? pool : std::min(threads, pool);
-}
-
-Imf::Compression imf_compression(ExrCompression compression) {
-    switch (compression) {
-        case ExrCompression::Piz:
-            return Imf::PIZ_COMPRESSION;
-        case ExrCompression::Rle:
-            return Imf::RLE_COMPRESSION;
-        case ExrCompression::None:
-            return Imf::NO_COMPRESSION;
-        case ExrCompression::Zip:
-            break;
-    }
-    return Imf::ZIP_COMPRESSION;
-}
-
-/// HALF channels: what the header reports of them (scanned before the file is opened), and a
-/// buffer of a block of their rows, converted just before OpenEXR copies them (the whole image
-/// converted first was 9.8 MB of fresh pages at 1280x960 R, G, B, A, written once and read once:
-/// page faults and cache misses; a block of rows stays in the cache).
+/// HALF channels: what the header reports of them (scanned before the file is opened; the
+/// values are converted while each block is packed).
 struct HalfPlanes {
     std::vector<size_t> channels;  ///< indices of the HALF channels
     ExrWriteReport report;
     bool any() const { return !channels.empty(); }
 };
-
-/// Rows converted per block: a multiple of ZIP's 16 scanlines (and PIZ's 32), 4 blocks of ZIP
-/// so OpenEXR's threads compress them together; R, G, B, A of a 1280-pixel row: 640 KB a block.
-constexpr int kHalfBlockRows = 64;
-
-/// Rounds `n` floats to half (Imath: to nearest, ties to even), saturating |v| > 65504 to
-/// +-65504 (Imath would give infinity from 65520 on) and counting the non-zero values flushed
-/// to zero (see ExrPixelType). Finite values only (checked first).
-void convert_to_half_scalar(const float* from, size_t n, Imath::half* to, ExrWriteReport& report) {
-    for (size_t i = 0; i < n; ++i) {
-        const float v = std::clamp(from[i], -kHalfMax, kHalfMax);
-        to[i] = Imath::half(v);
-        if (v != 0.0f && (to[i].bits() & 0x7fffu) == 0)  // +-0 from a non-zero value
-            ++report.half_flushed_to_zero;
-    }
-}
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define KASUMI_EXR_F16C 1
-static_assert(sizeof(Imath::half) == 2, "the F16C path stores 16-bit halves");
-/// The same 8 values at a time with the F16C instruction VCVTPS2PH in round-to-nearest-even
-/// mode: IEEE 754 binary32 -> binary16 rounding, which is what Imath's software conversion
-/// computes (and what Imath itself uses when built for F16C), so the same bits; ~10x fewer
-/// instructions (the conversion was 8% of a 640x480 render's). Clamping first keeps the
-/// saturation rule; a lane can only flush to zero when 0 < |v| < 2^-24, checked per block.
-__attribute__((target("avx,f16c"))) void convert_to_half_f16c(const float* from, size_t n,
-                                                              Imath::half* to,
-                                                              ExrWriteReport& report) {
-    const __m256 high = _mm256_set1_ps(kHalfMax), low = _mm256_set1_ps(-kHalfMax);
-    const __m256 sign = _mm256_set1_ps(-0.0f), tiny = _mm256_set1_ps(0x1p-24f);
-    const __m256 zero = _mm256_setzero_ps();
-    size_t i = 0;
-    for (; i + 8 <= n; i += 8) {
-        const __m256 v = _mm256_min_ps(_mm256_max_ps(_mm256_loadu_ps(from + i), low), high);
-        const __m128i h = _mm256_cvtps_ph(v, _MM_FROUND_TO_NEAREST_INT);
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(to + i), h);
-        const __m256 magnitude = _mm256_andnot_ps(sign, v);
-        const int small = _mm256_movemask_ps(_mm256_and_ps(
-            _mm256_cmp_ps(magnitude, tiny, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_NEQ_OQ)));
-        if (small != 0) {
-            for (int k = 0; k < 8; ++k)
-                if (((small >> k) & 1) != 0 && (to[i + k].bits() & 0x7fffu) == 0)
-                    ++report.half_flushed_to_zero;
-        }
-    }
-    convert_to_half_scalar(from + i, n - i, to + i, report);
-}
-#endif
-
-void convert_to_half(const float* from, size_t n, Imath::half* to, ExrWriteReport& report) {
-#if defined(KASUMI_EXR_F16C)
-    static const bool f16c = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
-    if (f16c) {
-        convert_to_half_f16c(from, n, to, report);
-        return;
-    }
-#endif
-    convert_to_half_scalar(from, n, to, report);
-}
 
 HalfPlanes scan_half_channels(const Image& header, const std::vector<ExrChannelView>& channels) {
     const size_t pixels = static_cast<size_t>(header.width) * static_cast<size_t>(header.height);
@@ -226,36 +115,341 @@ HalfPlanes scan_half_channels(const Image& header, const std::vector<ExrChannelV
     return planes;
 }
 
-Imf::Header make_header(const Image& image, const std::vector<ExrChannelView>& channels,
-                        ExrCompression compression, const HalfPlanes& half) {
-    Imf::Header header(image.width, image.height);
-    header.compression() = imf_compression(compression);
-    // zlib level 1: on a 1280x720 render with its AOVs, 8% less write time than the default
-    // level for a 3% larger file (float noise compresses little at any level).
-    header.zipCompressionLevel() = 1;
-    header.lineOrder() = Imf::INCREASING_Y;
-    const Chromaticities& c = image.chromaticities;
-    Imf::addChromaticities(
-        header,
-        Imf::Chromaticities(Imath::V2f(c.red_x, c.red_y), Imath::V2f(c.green_x, c.green_y),
-                            Imath::V2f(c.blue_x, c.blue_y), Imath::V2f(c.white_x, c.white_y)));
-    for (const ExrChannelView& channel : channels)
-        header.channels().insert(
-            channel.name,
-            Imf::Channel(channel.type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT));
-    for (const auto& kv : image.metadata)
-        header.insert(kExrMetadataPrefix + kv.first, Imf::StringAttribute(kv.second));
-    if (half.any()) {
-        // In the file itself: a reader sees whether values were saturated, and from what.
-        char max_abs[32];
-        std::snprintf(max_abs, sizeof max_abs, "%.9g",
-                      static_cast<double>(half.report.half_max_abs));
-        header.insert(std::string(kExrMetadataPrefix) + "half/saturated",
-                      Imf::StringAttribute(std::to_string(half.report.half_saturated)));
-        header.insert(std::string(kExrMetadataPrefix) + "half/max_abs",
-                      Imf::StringAttribute(max_abs));
+/// ZIP (OpenEXR's ZIP_COMPRESSION) is written here through OpenEXR's core C library, which
+/// takes each chunk as we compressed it: Imf::OutputFile splits and predicts the bytes one at a
+/// time, copies every scanline through its frame buffer and hands each block to its thread pool
+/// (43.5M instructions for a 128x128 render with its AOVs, 19% of the process at 1 spp, of
+/// which 40% before zlib). The file is the same format, every byte of pixels the same.
+constexpr int kZipBlockRows = 16;  ///< scanlines per ZIP chunk (the format's)
+
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+              "ZIP chunks are packed from the planes' bytes: EXR values are little-endian");
+
+/// OpenEXR's ZIP pre-pass over one chunk of `n` bytes (n even: 2- and 4-byte values): the even
+/// bytes, then the odd ones (the low and high bytes of the values apart), each then replaced by
+/// its difference from the one before plus 128, modulo 256 (smooth data becomes runs of 128).
+/// In one pass over `raw` (OpenEXR splits into a buffer, then differences it byte by byte).
+void zip_predict(const uint8_t* raw, size_t n, uint8_t* out) {
+    if (n == 0)
+        return;
+    const size_t half = n / 2;
+    out[0] = raw[0];
+    for (size_t i = 1; i < half; ++i)
+        out[i] = static_cast<uint8_t>(raw[2 * i] - raw[2 * i - 2] + 128u);
+    out[half] = static_cast<uint8_t>(raw[1] - raw[n - 2] + 128u);
+    for (size_t i = 1; i < half; ++i)
+        out[half + i] = static_cast<uint8_t>(raw[2 * i + 1] - raw[2 * i - 1] + 128u);
+}
+
+/// zlib's checksum of `n` bytes (RFC 1950: s1 = 1 + the sum of the bytes, s2 = the sum of the
+/// successive s1, both modulo 65521; s2 << 16 | s1).
+uint32_t adler32_of(const uint8_t* data, size_t n);
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define KASUMI_EXR_AVX2_ADLER 1
+/// The same 32 bytes at a time (zlib 1.2.13 adds them one by one, 18% of its deflate's
+/// instructions on a render's ZIP chunks). Over a chunk of bytes b_0 .. b_31: s1 gains their
+/// sum, s2 gains 32 s1 plus sum (32 - i) b_i; over up to 173 chunks (5536 bytes, zlib's NMAX
+/// bound: nothing overflows 32 bits before the modulo) s2 gains 32 times the running s1 before
+/// each chunk.
+/// The sum of the 8 32-bit lanes of `v`.
+__attribute__((target("avx2"))) uint64_t sum_lanes(__m256i v) {
+    const __m128i h = _mm_add_epi32(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
+    const __m128i q = _mm_add_epi32(h, _mm_shuffle_epi32(h, 0x4e));
+    return static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_add_epi32(q, _mm_shuffle_epi32(q, 0xb1))));
+}
+
+__attribute__((target("avx2"))) uint32_t adler32_avx2(const uint8_t* data, size_t n) {
+    constexpr uint32_t kBase = 65521;
+    constexpr size_t kChunksPerRound = 173;
+    uint64_t s1 = 1, s2 = 0;
+    const __m256i weights =
+        _mm256_setr_epi8(32, 31, 30, 29, 28, 27, 26, 25, 24, 23, 22, 21, 20, 19, 18, 17, 16, 15, 14,
+                         13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1);
+    const __m256i ones = _mm256_set1_epi16(1), zero = _mm256_setzero_si256();
+    while (n >= 32) {
+        const size_t chunks = std::min(n / 32, kChunksPerRound);
+        __m256i byte_sums = zero, prefix = zero, weighted = zero;
+        for (size_t c = 0; c < chunks; ++c, data += 32) {
+            const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(data));
+            prefix = _mm256_add_epi32(prefix, byte_sums);
+            byte_sums = _mm256_add_epi32(byte_sums, _mm256_sad_epu8(v, zero));
+            weighted = _mm256_add_epi32(weighted,
+                                        _mm256_madd_epi16(_mm256_maddubs_epi16(v, weights), ones));
+        }
+        s2 = (s2 + 32 * chunks * s1 + 32 * sum_lanes(prefix) + sum_lanes(weighted)) % kBase;
+        s1 = (s1 + sum_lanes(byte_sums)) % kBase;
+        n -= 32 * chunks;
     }
-    return header;
+    for (size_t i = 0; i < n; ++i) {
+        s1 += data[i];
+        s2 += s1;
+    }
+    return static_cast<uint32_t>((s2 % kBase) << 16 | (s1 % kBase));
+}
+#endif
+
+uint32_t adler32_of(const uint8_t* data, size_t n) {
+#if defined(KASUMI_EXR_AVX2_ADLER)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2)
+        return adler32_avx2(data, n);
+#endif
+    return static_cast<uint32_t>(
+        adler32_z(adler32_z(0, nullptr, 0), data, static_cast<z_size_t>(n)));
+}
+
+/// A channel in the file's order (by name), with what its values are written as.
+struct ZipChannel {
+    const float* data = nullptr;
+    ExrPixelType type = ExrPixelType::Float;
+};
+
+/// Encodes ZIP chunks: rows [y0, y0 + rows) packed as OpenEXR lays them out (row after row, in
+/// each row every channel's `width` values, channels in name order), predicted and deflated
+/// (zlib level 1: on a 1280x720 render with its AOVs, 8% less write time than the default level
+/// for a 3% larger file, float noise compresses little at any level). The zlib stream is the
+/// one compress2 makes at that level, the bytes OpenEXR writes: its 2-byte header, the raw
+/// deflate stream, the Adler-32 of the input (computed here, adler32_of). The chunk is the
+/// packed bytes themselves when deflate does not make them smaller (the format's rule: a chunk
+/// as large as its raw data is raw). Half channels are converted here, counted in `report`.
+/// One deflate state and one set of buffers, never cleared, serve every chunk (compress2
+/// allocates and clears ~270 KB of state per call; a vector sized for deflate's bound would be
+/// cleared per chunk, 1.4 MB of a 1280-pixel block with every AOV).
+class ZipEncoder {
+  public:
+    ZipEncoder() {
+        // Raw deflate (negative window bits: no zlib header or checksum), level 1, zlib's
+        // default window (15 bits), memory level (8) and strategy, as compress2 uses them.
+        if (deflateInit2(&m_stream, 1, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+            throw std::runtime_error("zlib deflateInit2 failed");
+    }
+    ~ZipEncoder() { deflateEnd(&m_stream); }
+    ZipEncoder(const ZipEncoder&) = delete;
+    ZipEncoder& operator=(const ZipEncoder&) = delete;
+
+    /// The chunk's bytes, valid until the next call.
+    struct Chunk {
+        const uint8_t* data;
+        size_t size;
+    };
+
+    Chunk encode(const std::vector<ZipChannel>& channels, size_t width, int y0, int rows,
+                 ExrWriteReport& report) {
+        size_t row_bytes = 0;
+        for (const ZipChannel& channel : channels)
+            row_bytes += width * (channel.type == ExrPixelType::Half ? 2u : 4u);
+        const size_t n = row_bytes * static_cast<size_t>(rows);
+        constexpr size_t kHeader = 2, kChecksum = 4;
+        const size_t bound = kHeader + deflateBound(&m_stream, static_cast<uLong>(n)) + kChecksum;
+        if (n > m_capacity || bound > m_out_capacity) {  // every byte written before it is read
+            m_packed.reset(new uint8_t[n]);
+            m_predicted.reset(new uint8_t[n]);
+            m_out.reset(new uint8_t[bound]);
+            m_capacity = n;
+            m_out_capacity = bound;
+        }
+        uint8_t* to = m_packed.get();
+        for (int y = y0; y < y0 + rows; ++y) {
+            const size_t first = static_cast<size_t>(y) * width;
+            for (const ZipChannel& channel : channels) {
+                if (channel.type == ExrPixelType::Half) {
+                    // Even offsets only (every value before is 2 or 4 bytes): aligned halves.
+                    convert_to_half(channel.data + first, width, reinterpret_cast<Imath::half*>(to),
+                                    report);
+                    to += width * 2;
+                } else {
+                    std::memcpy(to, channel.data + first, width * 4);
+                    to += width * 4;
+                }
+            }
+        }
+        zip_predict(m_packed.get(), n, m_predicted.get());
+        uint8_t* out = m_out.get();
+        out[0] = 0x78;  // deflate, 32 KB window
+        out[1] = 0x01;  // level 1 ("fastest"), no dictionary; header % 31 == 0
+        m_stream.next_in = m_predicted.get();
+        m_stream.avail_in = static_cast<uInt>(n);
+        m_stream.next_out = out + kHeader;
+        m_stream.avail_out = static_cast<uInt>(bound - kHeader - kChecksum);
+        const int result = deflate(&m_stream, Z_FINISH);
+        const size_t size = kHeader + m_stream.total_out + kChecksum;
+        deflateReset(&m_stream);
+        if (result == Z_STREAM_END && size < n) {
+            const uint32_t checksum = adler32_of(m_predicted.get(), n);
+            for (size_t i = 0; i < kChecksum; ++i)  // big-endian
+                out[size - kChecksum + i] = static_cast<uint8_t>(checksum >> (24 - 8 * i));
+            return {out, size};
+        }
+        return {m_packed.get(), n};
+    }
+
+  private:
+    z_stream m_stream{};
+    std::unique_ptr<uint8_t[]> m_packed, m_predicted, m_out;
+    size_t m_capacity = 0, m_out_capacity = 0;
+};
+
+/// The message of the last failed OpenEXR core call on this thread (its error callback; the
+/// default one prints to stderr).
+thread_local std::string exr_core_message;
+
+void remember_exr_core_error(exr_const_context_t, exr_result_t code, const char* message) {
+    exr_core_message = std::string(exr_get_error_code_as_string(code)) +
+                       (message ? ": " + std::string(message) : "");
+}
+
+void check_exr_core(exr_result_t result) {
+    if (result != EXR_ERR_SUCCESS) {
+        const std::string message =
+            exr_core_message.empty() ? exr_get_default_error_message(result) : exr_core_message;
+        exr_core_message.clear();
+        throw std::runtime_error(message);
+    }
+}
+
+/// An OpenEXR core write context, finished (offset table written, file closed) on every path.
+class ExrCoreWriter {
+  public:
+    explicit ExrCoreWriter(const std::string& path) {
+        exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+        init.error_handler_fn = &remember_exr_core_error;
+        check_exr_core(exr_start_write(&m_context, path.c_str(), EXR_WRITE_FILE_DIRECTLY, &init));
+    }
+    ~ExrCoreWriter() { finish(); }
+    ExrCoreWriter(const ExrCoreWriter&) = delete;
+    ExrCoreWriter& operator=(const ExrCoreWriter&) = delete;
+
+    exr_context_t context() const { return m_context; }
+    exr_result_t finish() { return m_context ? exr_finish(&m_context) : EXR_ERR_SUCCESS; }
+
+  private:
+    exr_context_t m_context = nullptr;
+};
+
+/// How many threads compress `blocks` chunks of `bytes` raw bytes in all, for a write asked to
+/// use `threads` (0: every hardware thread): at least 1 MiB of raw data each (a thread's start
+/// costs more than it saves on less).
+int zip_threads(int threads, size_t bytes, int blocks) {
+    const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const int asked = threads <= 0 ? hardware : std::min(threads, hardware);
+    const int by_size = static_cast<int>(std::max<size_t>(1, bytes >> 20));
+    return std::max(1, std::min({asked, by_size, blocks}));
+}
+
+/// Keeps zlib's deflate state in the process: zlib allocates ~270 KB of it for every write (it
+/// was every compressed block with Imf) and frees it after; glibc's default trim threshold (128 KB)
+/// then returns the top of the arena to the kernel each time (madvise, and in a VM a TLB shootdown
+/// on every core): 4% of the CPU of a 640x480 soft-shadow render. Keep up to 64 MB of freed memory
+/// instead.
+void keep_freed_memory() {
+#if defined(__GLIBC__)
+    static std::once_flag once;
+    std::call_once(once, [] { mallopt(M_TRIM_THRESHOLD, 64 << 20); });
+#endif
+}
+
+/// Writes the ZIP-compressed EXR of `channels` (checked, HALF ones scanned into `half`) to
+/// `path`, with the header make_header gives Imf::OutputFile (its attributes, and the part's
+/// `type` the core library adds); the HALF channels' flushes are counted in `half.report`.
+void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channels,
+                   const std::string& path, int threads, HalfPlanes& half) {
+    keep_freed_memory();
+    ExrCoreWriter writer(path);
+    exr_context_t context = writer.context();
+    int part = 0;
+    check_exr_core(exr_add_part(context, nullptr, EXR_STORAGE_SCANLINE, &part));
+    check_exr_core(exr_initialize_required_attr_simple(context, part, image.width, image.height,
+                                                       EXR_COMPRESSION_ZIP));
+    const std::vector<std::pair<std::string, std::string>> attributes =
+        exr_string_attributes(image, half.any(), half.report);
+    bool long_names = false;  // beyond 31 bytes: the file's "long names" flag, as Imf sets it
+    for (const auto& kv : attributes)
+        long_names = long_names || kv.first.size() > 31;
+    for (const ExrChannelView& channel : channels)
+        long_names = long_names || channel.name.size() > 31;
+    if (long_names)
+        check_exr_core(exr_set_longname_support(context, 1));
+    for (const ExrChannelView& channel : channels)
+        check_exr_core(
+            exr_add_channel(context, part, channel.name.c_str(),
+                            channel.type == ExrPixelType::Half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
+                            EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1));
+    const Chromaticities& c = image.chromaticities;
+    const exr_attr_chromaticities_t chromaticities = {c.red_x,  c.red_y,  c.green_x, c.green_y,
+                                                      c.blue_x, c.blue_y, c.white_x, c.white_y};
+    check_exr_core(exr_attr_set_chromaticities(context, part, "chromaticities", &chromaticities));
+    for (const auto& kv : attributes)
+        check_exr_core(exr_attr_set_string(context, part, kv.first.c_str(), kv.second.c_str()));
+    check_exr_core(exr_write_header(context));
+
+    // The channels in the file's order (the list the core library sorted by name).
+    const exr_attr_chlist_t* list = nullptr;
+    check_exr_core(exr_get_channels(context, part, &list));
+    std::vector<ZipChannel> ordered;
+    for (int i = 0; i < list->num_channels; ++i)
+        for (const ExrChannelView& channel : channels)
+            if (channel.name == list->entries[i].name.str)
+                ordered.push_back({channel.data, channel.type});
+    if (ordered.size() != channels.size())
+        throw std::runtime_error("channel list mismatch");
+
+    const size_t width = static_cast<size_t>(image.width);
+    const int blocks = (image.height + kZipBlockRows - 1) / kZipBlockRows;
+    size_t row_bytes = 0;
+    for (const ZipChannel& channel : ordered)
+        row_bytes += width * (channel.type == ExrPixelType::Half ? 2u : 4u);
+    const int workers = zip_threads(threads, row_bytes * static_cast<size_t>(image.height), blocks);
+    const auto rows_of = [&](int block) {
+        return std::min(kZipBlockRows, image.height - block * kZipBlockRows);
+    };
+    if (workers == 1) {
+        ZipEncoder encoder;
+        for (int b = 0; b < blocks; ++b) {
+            const ZipEncoder::Chunk chunk =
+                encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b), half.report);
+            check_exr_core(
+                exr_write_scanline_chunk(context, part, b * kZipBlockRows, chunk.data, chunk.size));
+        }
+    } else {
+        // Every chunk compressed first (each thread takes the next block), then written in order.
+        std::vector<std::vector<uint8_t>> chunks(static_cast<size_t>(blocks));
+        std::vector<ExrWriteReport> reports(static_cast<size_t>(workers));
+        std::atomic<int> next{0};
+        const auto work = [&](int worker) {
+            ZipEncoder encoder;
+            for (int b = next++; b < blocks; b = next++) {
+                const ZipEncoder::Chunk chunk =
+                    encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b),
+                                   reports[static_cast<size_t>(worker)]);
+                chunks[static_cast<size_t>(b)].assign(chunk.data, chunk.data + chunk.size);
+            }
+        };
+        std::vector<std::thread> helpers;
+        for (int w = 1; w < workers; ++w)
+            helpers.emplace_back(work, w);
+        work(0);
+        for (std::thread& helper : helpers)
+            helper.join();
+        for (const ExrWriteReport& report : reports)
+            half.report.half_flushed_to_zero += report.half_flushed_to_zero;
+        for (int b = 0; b < blocks; ++b)
+            check_exr_core(exr_write_scanline_chunk(context, part, b * kZipBlockRows,
+                                                    chunks[static_cast<size_t>(b)].data(),
+                                                    chunks[static_cast<size_t>(b)].size()));
+    }
+    check_exr_core(writer.finish());
+}
+
+const ExrModuleApi& exr_module() {
+    static const ModuleSpec spec{"OpenEXR module",
+                                 "to read EXR files and to write them with piz, rle or none",
+                                 kExrModuleFile,
+                                 "KASUMI_EXR_MODULE",
+                                 KASUMI_EXR_MODULE_BUILD_PATH,
+                                 kExrModuleEntry,
+                                 kExrModuleAbi};
+    return module_api<ExrModuleApi>(spec);
 }
 
 }  // namespace
@@ -314,56 +508,11 @@ ExrWriteReport write_exr(const Image& header_image, const std::vector<ExrChannel
     HalfPlanes half = scan_half_channels(header_image, channels);
     AtomicFile file(path);
     try {
-        const Imf::Header header = make_header(header_image, channels, compression, half);
-        const size_t width = static_cast<size_t>(header_image.width);
-        const int height = header_image.height;
-        const int block_rows = std::min(kHalfBlockRows, height);
-        const size_t block_values = width * static_cast<size_t>(block_rows);
-        // One block of rows of every HALF channel, plane after plane (not cleared: each value
-        // is written before OpenEXR reads it).
-        std::unique_ptr<Imath::half[]> block(
-            half.any() ? new Imath::half[half.channels.size() * block_values] : nullptr);
-        // The frame buffer of rows [y0, y0 + block_rows): FLOAT channels read from the planes
-        // themselves, HALF channels from the block, addressed as if it held the whole image
-        // (OpenEXR reads row y at base + y * yStride; the base is offset back by y0 rows, as
-        // Imf::Slice::Make does for data windows).
-        const auto frame_buffer_at = [&](int y0) {
-            Imf::FrameBuffer frame_buffer;
-            size_t k = 0;
-            for (const ExrChannelView& channel : channels) {
-                // OpenEXR only reads through the slice; the const_cast is its API's, not a write.
-                if (channel.type == ExrPixelType::Half) {
-                    const Imath::half* rows = block.get() + (k++) * block_values;
-                    char* base = reinterpret_cast<char*>(const_cast<Imath::half*>(rows)) -
-                                 static_cast<ptrdiff_t>(y0) *
-                                     static_cast<ptrdiff_t>(sizeof(Imath::half) * width);
-                    frame_buffer.insert(channel.name,
-                                        Imf::Slice(Imf::HALF, base, sizeof(Imath::half),
-                                                   sizeof(Imath::half) * width));
-                } else {
-                    char* base = reinterpret_cast<char*>(const_cast<float*>(channel.data));
-                    frame_buffer.insert(channel.name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
-                                                                 sizeof(float) * width));
-                }
-            }
-            return frame_buffer;
-        };
-        Imf::OutputFile out(file.temp_path().c_str(), header, exr_write_threads(threads));
-        if (!half.any()) {
-            out.setFrameBuffer(frame_buffer_at(0));
-            out.writePixels(height);
-        } else {
-            for (int y0 = 0; y0 < height; y0 += block_rows) {
-                const int rows = std::min(block_rows, height - y0);
-                const size_t first = static_cast<size_t>(y0) * width;
-                for (size_t k = 0; k < half.channels.size(); ++k)
-                    convert_to_half(channels[half.channels[k]].data + first,
-                                    static_cast<size_t>(rows) * width,
-                                    block.get() + k * block_values, half.report);
-                out.setFrameBuffer(frame_buffer_at(y0));
-                out.writePixels(rows);
-            }
-        }
+        if (compression == ExrCompression::Zip)
+            write_zip_exr(header_image, channels, file.temp_path(), threads, half);
+        else
+            exr_module().write(header_image, channels, file.temp_path(), compression, threads,
+                               half.report);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
@@ -374,48 +523,7 @@ ExrWriteReport write_exr(const Image& header_image, const std::vector<ExrChannel
 }
 
 Image read_exr(const std::string& path) {
-    try {
-        Imf::InputFile in(path.c_str());
-        const Imf::Header& header = in.header();
-        const Imath::Box2i data_window = header.dataWindow();
-        Image image(data_window.max.x - data_window.min.x + 1,
-                    data_window.max.y - data_window.min.y + 1);
-        for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
-            if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
-                throw_input_error(path + ": channel '" + it.name() +
-                                  "' is subsampled, which is not supported");
-            image.add_channel(it.name());
-        }
-        Imf::FrameBuffer frame_buffer;
-        for (ImageChannel& channel : image.channels) {
-            // Slice::Make offsets the base pointer by the data window's origin.
-            frame_buffer.insert(channel.name,
-                                Imf::Slice::Make(Imf::FLOAT, channel.data.data(), data_window));
-        }
-        in.setFrameBuffer(frame_buffer);
-        in.readPixels(data_window.min.y, data_window.max.y);
-
-        if (Imf::hasChromaticities(header)) {
-            const Imf::Chromaticities& c = Imf::chromaticities(header);
-            image.chromaticities = Chromaticities{c.red.x,  c.red.y,  c.green.x, c.green.y,
-                                                  c.blue.x, c.blue.y, c.white.x, c.white.y};
-        }
-        const size_t prefix_length = std::strlen(kExrMetadataPrefix);
-        for (auto it = header.begin(); it != header.end(); ++it) {
-            const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute());
-            if (!text)
-                continue;
-            std::string key = it.name();
-            if (key.compare(0, prefix_length, kExrMetadataPrefix) == 0)
-                key = key.substr(prefix_length);
-            image.metadata.emplace_back(key, text->value());
-        }
-        return image;
-    } catch (const Error&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw_input_error(path + ": cannot read EXR: " + e.what());
-    }
+    return exr_module().read(path);
 }
 
 }  // namespace kasumi

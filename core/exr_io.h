@@ -79,8 +79,8 @@ ExrWriteReport write_exr(const Image& header, const std::vector<ExrChannelView>&
 
 /// Reads every channel of `path` as float (HALF channels converted exactly) (top row first) and its
 /// string attributes: those named "kasumi/<key>" become metadata <key>, other string attributes
-/// keep their full name. Missing chromaticities read as Rec.709. Throws ErrorKind::Input naming
-/// `path` on failure.
+/// keep their full name, except the part's "type" (its storage, not metadata). Missing
+/// chromaticities read as Rec.709. Throws ErrorKind::Input naming `path` on failure.
 Image read_exr(const std::string& path);
 
 }  // namespace kasumi

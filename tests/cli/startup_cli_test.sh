@@ -4,7 +4,8 @@
 # in the common layout is read without it (volume/grid/vdb_direct.h), and through it with
 # KASUMI_VDB_DIRECT=0 (also the path of every other layout); a missing or foreign module is a
 # clear runtime error (exit 1) naming the paths tried, with no output written. OpenColorIO likewise (libkasumi_ocio.so,
-# only for the PNG preview). And `--aovs none` writes exactly R, G, B, A.
+# only for the PNG preview), and OpenEXR's C++ library (libkasumi_exr.so, not for ZIP output). And `--aovs none` writes exactly R, G, B, A. Every subcommand is
+# listed by --help and parses its own --help when named first (apps/main.cpp declares only it).
 # usage: startup_cli_test.sh KASUMI_BINARY SOURCE_DIR
 set -u
 kasumi="$1"
@@ -30,6 +31,17 @@ JSON
 libs=$(loaded_libs render "$work/fog.json" -o "$work/fog.exr" --no-preview -q)
 echo "$libs" | grep -q "openvdb\|kasumi_vdb" && fail "a scene without grids loads OpenVDB: $libs"
 echo "$libs" | grep -q "OpenColorIO\|kasumi_ocio" && fail "a render without preview loads OpenColorIO: $libs"
+# The default ZIP EXR is written through OpenEXR's core library; its C++ library only through
+# the OpenEXR module (libkasumi_exr.so), for piz, rle and none (and reading EXRs).
+echo "$libs" | grep -q "libOpenEXR-\|kasumi_exr" && fail "a zip render loads OpenEXR's C++ library: $libs"
+libs=$(loaded_libs render "$work/fog.json" -o "$work/piz.exr" --no-preview -q --compression piz)
+echo "$libs" | grep -q "kasumi_exr" || fail "a piz render did not load the OpenEXR module: $libs"
+KASUMI_EXR_MODULE=/nonexistent/libkasumi_exr.so expect_exit 1 \
+  "OpenEXR module.*/nonexistent/libkasumi_exr.so \(no such file\).*KASUMI_EXR_MODULE" -- \
+  render "$work/fog.json" -o "$work/rle.exr" --no-preview -q --compression rle
+[ -e "$work/rle.exr" ] && fail "an EXR was written without the OpenEXR module"
+KASUMI_EXR_MODULE=/nonexistent/libkasumi_exr.so expect_exit 0 "" -- \
+  render "$work/fog.json" -o "$work/zip.exr" --no-preview -q
 # The PNG preview loads the OpenColorIO module; without it, exit 1 naming the path tried.
 libs=$(loaded_libs render "$work/fog.json" -o "$work/p/fog.exr" -q)
 echo "$libs" | grep -q "kasumi_ocio" || fail "the preview did not load the OpenColorIO module: $libs"
@@ -81,5 +93,19 @@ expect_exit 0 "" -- render "$work/fog.json" -o "$work/all.exr" --no-preview -q
 expect_exit 0 "" -- render "$work/fog.json" -o "$work/tv.exr" --no-preview -q --aovs transmittance,depth
 [ "$(exr_channels "$work/tv.exr")" = "A,B,G,R,depth.Z,transmittance.B,transmittance.G,transmittance.R" ] ||
   fail "--aovs transmittance,depth: channels $(exr_channels "$work/tv.exr")"
+
+# Only the subcommand named first is declared (apps/main.cpp); --help, an unknown or a missing
+# name still see them all, and each one named first parses its own options.
+subcommands="render plan check probe phase make-cloud sequence movie study"
+expect_exit 0 "" -- --help
+cp "$work/stdout" "$work/help"
+for sub in $subcommands; do
+  grep -q "^  $sub " "$work/help" || fail "--help does not list $sub"
+  expect_exit 0 "" -- "$sub" --help
+  grep -q "^Usage: .* $sub \[OPTIONS\]" "$work/stdout" || fail "$sub --help: $(head -c 200 "$work/stdout")"
+done
+expect_exit 2 "A subcommand is required" -- bogus
+expect_exit 2 "A subcommand is required" --
+expect_exit 2 "not expected: plan" -- render "$work/fog.json" plan --no-preview -q
 
 finish "startup cli"

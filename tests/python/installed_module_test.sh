@@ -12,7 +12,7 @@ DESTDIR="$tmp/root" cmake --install "$build" --component python >/dev/null
 init="$(find "$tmp/root" -path '*/kasumi/__init__.py' | head -1)"
 [ -n "$init" ] || { echo "FAIL: no kasumi/__init__.py installed"; exit 1; }
 package="$(dirname "$init")"
-for module in libkasumi_vdb.so libkasumi_ocio.so; do
+for module in libkasumi_vdb.so libkasumi_ocio.so libkasumi_exr.so; do
   [ -f "$package/$module" ] || { echo "FAIL: $module not installed beside the extension"; exit 1; }
 done
 cd "$tmp"

@@ -16,6 +16,9 @@
 #include <emmintrin.h>
 #include <xmmintrin.h>
 #endif
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace kasumi {
 
@@ -61,9 +64,38 @@ struct BlockBricks {
     }
 };
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define KASUMI_GRID_AVX2 1
+/// classify_word eight at a time: the same comparisons (ordered >= 0 and <= FLT_MAX: false for
+/// NaN; unordered != 0: true for NaN), half the instructions of the SSE2 loop.
+__attribute__((target("avx2"))) void classify_word_avx2(const float* v, uint64_t& valid,
+                                                        uint64_t& nonzero) {
+    const __m256 zero = _mm256_setzero_ps(), largest = _mm256_set1_ps(FLT_MAX);
+    uint64_t ok_bits = 0, nz_bits = 0;
+    for (int i = 0; i < 64; i += 8) {
+        const __m256 x = _mm256_loadu_ps(v + i);
+        const __m256 ok = _mm256_and_ps(_mm256_cmp_ps(x, zero, _CMP_GE_OQ),
+                                        _mm256_cmp_ps(x, largest, _CMP_LE_OQ));
+        ok_bits |= static_cast<uint64_t>(_mm256_movemask_ps(ok)) << i;
+        nz_bits |= static_cast<uint64_t>(_mm256_movemask_ps(_mm256_cmp_ps(x, zero, _CMP_NEQ_UQ)))
+                   << i;
+    }
+    valid = ok_bits;
+    nonzero = nz_bits;
+}
+#endif
+
 /// Bits of the 64 values at v (one block word): `valid`, the finite values >= 0 (-0 included),
-/// and `nonzero`, those != 0; four at a time where SSE2 is available (the same comparisons).
+/// and `nonzero`, those != 0; eight at a time on a CPU with AVX2, four where SSE2 is available
+/// (the same comparisons).
 void classify_word(const float* v, uint64_t& valid, uint64_t& nonzero) {
+#if defined(KASUMI_GRID_AVX2)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) {
+        classify_word_avx2(v, valid, nonzero);
+        return;
+    }
+#endif
     valid = 0;
     nonzero = 0;
 #ifdef __SSE2__

@@ -68,7 +68,25 @@ void read_data(Cursor& in, uint32_t compression, float* out, uint32_t count) {
     }
 }
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define KASUMI_VDB_POPCNT 1
+/// count_on with the POPCNT instruction: the build targets baseline x86-64, where
+/// __builtin_popcountll is a call into libgcc (~21 instructions a word; 0.7M instructions
+/// reading the WDAS cloud).
+__attribute__((target("popcnt"))) uint32_t count_on_popcnt(const uint64_t* words, int n_words) {
+    uint32_t c = 0;
+    for (int w = 0; w < n_words; ++w)
+        c += static_cast<uint32_t>(__builtin_popcountll(words[w]));
+    return c;
+}
+#endif
+
 uint32_t count_on(const uint64_t* words, int n_words) {
+#if defined(KASUMI_VDB_POPCNT)
+    static const bool popcnt = __builtin_cpu_supports("popcnt");
+    if (popcnt)
+        return count_on_popcnt(words, n_words);
+#endif
     uint32_t c = 0;
     for (int w = 0; w < n_words; ++w)
         c += static_cast<uint32_t>(__builtin_popcountll(words[w]));

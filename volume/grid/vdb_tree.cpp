@@ -40,8 +40,18 @@ void read_internal(Cursor& in, Tree& tree, IVec3 origin, std::vector<float>& val
     uint64_t child_mask[kWords], value_mask[kWords];
     std::memcpy(child_mask, in.take(sizeof(child_mask)), sizeof(child_mask));
     std::memcpy(value_mask, in.take(sizeof(value_mask)), sizeof(value_mask));
-    values.resize(2 * kCount);
-    read_values(in, tree.compression, values.data(), kCount, value_mask, values.data() + kCount);
+    // The node's values are used only for its active tiles; a node with none (every node of
+    // most fog volumes) skips them (checking their sizes as OpenVDB reads them).
+    bool any_tile = false;
+    for (int w = 0; w < kWords; ++w)
+        any_tile = any_tile || (value_mask[w] & ~child_mask[w]) != 0;
+    if (!any_tile) {
+        skip_values(in, tree.compression, kCount, value_mask);
+    } else {
+        values.resize(2 * kCount);
+        read_values(in, tree.compression, values.data(), kCount, value_mask,
+                    values.data() + kCount);
+    }
     auto local = [](uint32_t i) {
         return IVec3(static_cast<int>(i >> (2 * Log2)),
                      static_cast<int>((i >> Log2) & ((1u << Log2) - 1)),
