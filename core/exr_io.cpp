@@ -416,13 +416,21 @@ void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channe
         std::vector<std::vector<uint8_t>> chunks(static_cast<size_t>(blocks));
         std::vector<ExrWriteReport> reports(static_cast<size_t>(workers));
         std::atomic<int> next{0};
+        // A worker's failure (zlib's state or a buffer not allocated) is kept and rethrown
+        // here after the join: an exception leaving a std::thread would end the process.
+        std::vector<std::exception_ptr> failures(static_cast<size_t>(workers));
         const auto work = [&](int worker) {
-            ZipEncoder encoder;
-            for (int b = next++; b < blocks; b = next++) {
-                const ZipEncoder::Chunk chunk =
-                    encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b),
-                                   reports[static_cast<size_t>(worker)]);
-                chunks[static_cast<size_t>(b)].assign(chunk.data, chunk.data + chunk.size);
+            try {
+                ZipEncoder encoder;
+                for (int b = next++; b < blocks; b = next++) {
+                    const ZipEncoder::Chunk chunk =
+                        encoder.encode(ordered, width, b * kZipBlockRows, rows_of(b),
+                                       reports[static_cast<size_t>(worker)]);
+                    chunks[static_cast<size_t>(b)].assign(chunk.data, chunk.data + chunk.size);
+                }
+            } catch (...) {
+                failures[static_cast<size_t>(worker)] = std::current_exception();
+                next = blocks;  // the others stop at their next block
             }
         };
         std::vector<std::thread> helpers;
@@ -431,6 +439,9 @@ void write_zip_exr(const Image& image, const std::vector<ExrChannelView>& channe
         work(0);
         for (std::thread& helper : helpers)
             helper.join();
+        for (const std::exception_ptr& failure : failures)
+            if (failure)
+                std::rethrow_exception(failure);
         for (const ExrWriteReport& report : reports)
             half.report.half_flushed_to_zero += report.half_flushed_to_zero;
         for (int b = 0; b < blocks; ++b)
