@@ -8,51 +8,17 @@
 #ifdef __SSE2__
 #include <emmintrin.h>
 #endif
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 namespace kasumi {
 
 namespace {
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define KASUMI_BRICK_AVX 1
-/// brick_extremes eight at a time (min and max of such values do not depend on the order).
-__attribute__((target("avx"))) void brick_extremes_avx(const float* v, float& lo, float& hi) {
-    constexpr int n = DensityGrid::kBrickVoxels;
-    __m256 mn = _mm256_loadu_ps(v), mx = mn;
-    int i = 8;
-    for (; i + 8 <= n; i += 8) {
-        const __m256 x = _mm256_loadu_ps(v + i);
-        mn = _mm256_min_ps(mn, x);
-        mx = _mm256_max_ps(mx, x);
-    }
-    float a[8], b[8];
-    _mm256_storeu_ps(a, mn);
-    _mm256_storeu_ps(b, mx);
-    lo = *std::min_element(a, a + 8);
-    hi = *std::max_element(b, b + 8);
-    for (; i < n; ++i) {
-        lo = std::min(lo, v[i]);
-        hi = std::max(hi, v[i]);
-    }
-}
-#endif
-
 /// The least and greatest of a brick's kBrickVoxels floats (finite, >= 0 and never -0: the
-/// builders store no zero but the initial +0), eight at a time with AVX, four with SSE: the same
+/// builders store no zero but the initial +0), four at a time where SSE is available: the same
 /// values as std::minmax_element, at a fraction of its CPU (the load of a 512³ cloud).
 void brick_extremes(const float* v, float& lo, float& hi) {
     constexpr int n = DensityGrid::kBrickVoxels;
     int i = 0;
-#if defined(KASUMI_BRICK_AVX)
-    static const bool avx = __builtin_cpu_supports("avx");
-    if (avx) {
-        brick_extremes_avx(v, lo, hi);
-        return;
-    }
-#endif
 #ifdef __SSE2__
     __m128 mn = _mm_loadu_ps(v), mx = mn;
     for (i = 4; i + 4 <= n; i += 4) {
